@@ -1,0 +1,119 @@
+#include "codec/common/mesh.h"
+
+#include <cmath>
+#include <string>
+
+namespace meshvid {
+
+Status ValidateMesh(const TriangleMesh& mesh, std::string_view what) {
+  const std::string name(what);
+  if (mesh.positions.empty()) return CorruptError(name + ": mesh has no vertices");
+  if (mesh.triangles.empty()) return CorruptError(name + ": mesh has no triangles");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (!mesh.positions[i].allFinite()) {
+      return CorruptError(name + ": vertex " + std::to_string(i) +
+                          " has a NaN or infinite coordinate");
+    }
+  }
+  const auto n = static_cast<std::uint32_t>(mesh.positions.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      if (mesh.triangles[t][c] >= n) {
+        return CorruptError(name + ": triangle " + std::to_string(t) + " uses vertex index " +
+                            std::to_string(mesh.triangles[t][c]) + " but there are only " +
+                            std::to_string(n) + " vertices");
+      }
+    }
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+    return CorruptError(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                        std::to_string(n) + " vertices");
+  }
+  return Status::Ok();
+}
+
+Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh) {
+  Eigen::AlignedBox3f box;
+  for (const auto& p : mesh.positions) box.extend(p);
+  return box;
+}
+
+void AppendMesh(const TriangleMesh& src, TriangleMesh* dst) {
+  const bool keep_normals = (dst->positions.empty() || !dst->normals.empty()) &&
+                            !src.normals.empty();
+  const auto offset = static_cast<std::uint32_t>(dst->positions.size());
+  dst->positions.insert(dst->positions.end(), src.positions.begin(), src.positions.end());
+  if (keep_normals) {
+    dst->normals.insert(dst->normals.end(), src.normals.begin(), src.normals.end());
+  } else {
+    dst->normals.clear();
+  }
+  dst->triangles.reserve(dst->triangles.size() + src.triangles.size());
+  for (const auto& t : src.triangles) dst->triangles.push_back(t.array() + offset);
+}
+
+Eigen::Vector3f TriangleNormal(const TriangleMesh& mesh, std::size_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  const Eigen::Vector3f n = (mesh.positions[tri[1]] - mesh.positions[tri[0]])
+                                .cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+  const float len = n.norm();
+  return len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::Zero();
+}
+
+std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3f> normals(mesh.positions.size(), Eigen::Vector3f::Zero());
+  for (const auto& tri : mesh.triangles) {
+    // The unnormalised cross product weighs each face by twice its area.
+    const Eigen::Vector3f n = (mesh.positions[tri[1]] - mesh.positions[tri[0]])
+                                  .cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    for (int c = 0; c < 3; ++c) normals[tri[c]] += n;
+  }
+  for (auto& n : normals) {
+    const float len = n.norm();
+    if (len > 0) n /= len;
+  }
+  return normals;
+}
+
+double SurfaceArea(const TriangleMesh& mesh) {
+  double area = 0;
+  for (const auto& tri : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.positions[tri[0]].cast<double>();
+    const Eigen::Vector3d b = mesh.positions[tri[1]].cast<double>();
+    const Eigen::Vector3d c = mesh.positions[tri[2]].cast<double>();
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area;
+}
+
+void TransformMesh(const Eigen::Affine3d& transform, TriangleMesh* mesh) {
+  const Eigen::Affine3f tf = transform.cast<float>();
+  for (auto& p : mesh->positions) p = tf * p;
+  if (!mesh->normals.empty()) {
+    const Eigen::Matrix3f normal_matrix = tf.linear().inverse().transpose();
+    for (auto& n : mesh->normals) n = (normal_matrix * n).normalized();
+  }
+}
+
+void RemoveUnreferencedVertices(TriangleMesh* mesh) {
+  constexpr std::uint32_t kUnused = ~std::uint32_t{0};
+  std::vector<std::uint32_t> remap(mesh->positions.size(), kUnused);
+  std::uint32_t next = 0;
+  for (auto& tri : mesh->triangles) {
+    for (int c = 0; c < 3; ++c) {
+      if (remap[tri[c]] == kUnused) remap[tri[c]] = next++;
+      tri[c] = remap[tri[c]];
+    }
+  }
+  std::vector<Eigen::Vector3f> positions(next);
+  std::vector<Eigen::Vector3f> normals(mesh->normals.empty() ? 0 : next);
+  for (std::size_t i = 0; i < remap.size(); ++i) {
+    if (remap[i] == kUnused) continue;
+    positions[remap[i]] = mesh->positions[i];
+    if (!normals.empty()) normals[remap[i]] = mesh->normals[i];
+  }
+  mesh->positions = std::move(positions);
+  mesh->normals = std::move(normals);
+}
+
+}  // namespace meshvid

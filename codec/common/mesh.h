@@ -1,0 +1,60 @@
+// TriangleMesh: the one in-memory mesh type of meshvid, shared by I/O, simulator, evaluation,
+// encoder and decoder.
+#ifndef MESHVID_CODEC_COMMON_MESH_H_
+#define MESHVID_CODEC_COMMON_MESH_H_
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "format/status.h"
+
+namespace meshvid {
+
+/// Three vertex indices, counter-clockwise seen from the outside.
+using Triangle = Eigen::Matrix<std::uint32_t, 3, 1>;
+
+/// An indexed triangle mesh in single precision. `normals` is optional: empty, or one unit
+/// normal per position.
+struct TriangleMesh {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Triangle> triangles;
+  std::vector<Eigen::Vector3f> normals;
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return triangles.size(); }
+  bool empty() const { return positions.empty() || triangles.empty(); }
+};
+
+/// Checks what every consumer of a mesh relies on: at least one triangle, every coordinate
+/// finite, every index in range, normals absent or one per vertex. `what` names the mesh in
+/// the message (usually its file).
+Status ValidateMesh(const TriangleMesh& mesh, std::string_view what);
+
+/// Axis-aligned bounding box of the positions (empty box for an empty mesh).
+Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh);
+
+/// Appends `src` to `dst`, offsetting its indices. Normals are kept only if both have them.
+void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);
+
+/// Area-weighted unit vertex normals (zero vector for an isolated vertex).
+std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh);
+
+/// Unit normal of triangle `t` (zero for a degenerate triangle).
+Eigen::Vector3f TriangleNormal(const TriangleMesh& mesh, std::size_t t);
+
+/// Total surface area.
+double SurfaceArea(const TriangleMesh& mesh);
+
+/// Applies a rigid or affine transform to positions (and rotates normals).
+void TransformMesh(const Eigen::Affine3d& transform, TriangleMesh* mesh);
+
+/// Removes vertices no triangle references, renumbering the triangles.
+void RemoveUnreferencedVertices(TriangleMesh* mesh);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_COMMON_MESH_H_

@@ -1,0 +1,64 @@
+#include "tests/test_util.h"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace meshvid::testing {
+
+std::string SharedDataDir() {
+  const char* env = std::getenv("MESHVID_SHARED_DATA");
+  const std::string dir = env != nullptr ? env : MESHVID_DEFAULT_SHARED_DATA;
+  std::error_code ec;
+  return std::filesystem::is_directory(dir, ec) ? dir : "";
+}
+
+TempDir::TempDir() {
+  std::string tmpl = (std::filesystem::temp_directory_path() / "meshvid_test_XXXXXX").string();
+  char* made = mkdtemp(tmpl.data());
+  if (made == nullptr) ADD_FAILURE() << "cannot create a temporary directory";
+  path_ = tmpl;
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+void WriteFile(const std::string& path, const std::string& contents) {
+  std::ofstream out(path, std::ios::binary);
+  out << contents;
+  ASSERT_TRUE(out.good()) << "cannot write " << path;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TriangleMesh MakeGridPlane(float size, int n, float z) {
+  TriangleMesh mesh;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      mesh.positions.emplace_back(size * (static_cast<float>(i) / n - 0.5f),
+                                  size * (static_cast<float>(j) / n - 0.5f), z);
+      mesh.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      mesh.triangles.emplace_back(a, b, d);
+      mesh.triangles.emplace_back(a, d, c);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace meshvid::testing

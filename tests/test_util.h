@@ -1,0 +1,48 @@
+// Helpers shared by the unit tests: temporary directories and the location of shared data.
+#ifndef MESHVID_TESTS_TEST_UTIL_H_
+#define MESHVID_TESTS_TEST_UTIL_H_
+
+#include <string>
+
+#include "codec/common/mesh.h"
+
+namespace meshvid::testing {
+
+/// The project's shared data folder (`../shared/data` beside the checkout, or the
+/// MESHVID_SHARED_DATA environment variable), or "" if it is absent.
+std::string SharedDataDir();
+
+/// A fresh empty directory, removed when the object is destroyed.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::string& path() const { return path_; }
+  /// path() + "/" + name.
+  std::string File(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+/// Writes `contents` to `path` (binary), failing the test on error.
+void WriteFile(const std::string& path, const std::string& contents);
+/// Reads a whole file into a string.
+std::string ReadFile(const std::string& path);
+
+/// A flat square grid mesh in the z = `z` plane, side `size`, `n` x `n` quads, centred on the
+/// origin, normals along +z.
+TriangleMesh MakeGridPlane(float size, int n, float z = 0.0f);
+
+}  // namespace meshvid::testing
+
+/// Skips the current test with a message when the shared data folder is absent; otherwise
+/// declares `const std::string shared_data` holding its path.
+#define MESHVID_REQUIRE_SHARED_DATA()                                                \
+  const std::string shared_data = ::meshvid::testing::SharedDataDir();               \
+  if (shared_data.empty()) GTEST_SKIP() << "shared data (../shared/data) is absent; " \
+                                           "set MESHVID_SHARED_DATA to run this test"
+
+#endif  // MESHVID_TESTS_TEST_UTIL_H_

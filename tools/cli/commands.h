@@ -1,0 +1,15 @@
+// Subcommands of the `meshvid` executable. Each cmd_*.cc file adds one subcommand to the app;
+// its callback stores the process exit code in *exit_code (0 ok, 1 failure, 2 usage).
+#ifndef MESHVID_TOOLS_CLI_COMMANDS_H_
+#define MESHVID_TOOLS_CLI_COMMANDS_H_
+
+#include <CLI/CLI.hpp>
+
+namespace meshvid::cli {
+
+void AddSimulateCommand(CLI::App& app, int* exit_code);
+void AddEvalCommand(CLI::App& app, int* exit_code);
+
+}  // namespace meshvid::cli
+
+#endif  // MESHVID_TOOLS_CLI_COMMANDS_H_

@@ -1,0 +1,64 @@
+#include "tools/cli/terminal.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace meshvid::cli {
+
+int ReportError(const Status& status) {
+  std::fprintf(stderr, "meshvid: %s\n", status.ToString().c_str());
+  return 1;
+}
+
+ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0) {}
+
+ProgressBar::~ProgressBar() { Finish(); }
+
+ProgressCallback ProgressBar::Callback() {
+  return [this](std::string_view stage, long done, long total) {
+    Draw(stage, done, total);
+    return true;
+  };
+}
+
+void ProgressBar::Finish() {
+  if (drawn_ && tty_) std::fputc('\n', stderr);
+  drawn_ = false;
+}
+
+void ProgressBar::Draw(std::string_view stage, long done, long total) {
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (stage != stage_) {
+    Finish();
+    stage_ = std::string(stage);
+    stage_start_ = now;
+    last_draw_ = {};
+  }
+  const bool last = total > 0 && done >= total;
+  // Redraw a terminal bar at most 10 times a second; print a plain line every 5 seconds.
+  const auto min_gap = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
+  if (!last && now - last_draw_ < min_gap) return;
+  last_draw_ = now;
+  const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+  const double fraction = total > 0 ? static_cast<double>(done) / total : 0.0;
+  const double rate = elapsed > 0 ? done / elapsed : 0.0;
+  const double eta = rate > 0 && total > done ? (total - done) / rate : 0.0;
+  if (tty_) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::string bar(filled, '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stderr, "\r%-12.*s [%s] %ld/%ld  %.1f/s  ETA %.0fs   ",
+                 static_cast<int>(stage_.size()), stage_.data(), bar.c_str(), done, total, rate,
+                 eta);
+    drawn_ = true;
+  } else {
+    std::fprintf(stderr, "%.*s: %ld/%ld (%.1f/s)\n", static_cast<int>(stage_.size()),
+                 stage_.data(), done, total, rate);
+  }
+  std::fflush(stderr);
+}
+
+}  // namespace meshvid::cli

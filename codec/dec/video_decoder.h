@@ -1,0 +1,40 @@
+// Decoding of displacement video packets with libavcodec.
+#ifndef MESHVID_CODEC_DEC_VIDEO_DECODER_H_
+#define MESHVID_CODEC_DEC_VIDEO_DECODER_H_
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "codec/common/video_codec.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// Decodes a 10-bit grey video stream. Feed the packets of one group of frames in decoding
+/// order, then Flush(); Reset() before jumping to another group.
+class VideoDecoder {
+ public:
+  ~VideoDecoder();
+  /// `extradata` is the encoder's global header (may be empty); `threads` 0 lets FFmpeg pick.
+  static StatusOr<std::unique_ptr<VideoDecoder>> Create(VideoCodec codec, int width, int height,
+                                                        std::span<const std::uint8_t> extradata,
+                                                        int threads = 1);
+  /// Decodes one packet; appends the pictures it completes (in presentation order) to `out`.
+  Status Decode(const VideoPacket& packet, std::vector<GreyPicture>* out);
+  /// Drains the pictures still held by the decoder.
+  Status Flush(std::vector<GreyPicture>* out);
+  /// Forgets all state, ready for the first packet of another group of frames.
+  void Reset();
+
+ private:
+  VideoDecoder() = default;
+  Status Receive(std::vector<GreyPicture>* out);
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_DEC_VIDEO_DECODER_H_

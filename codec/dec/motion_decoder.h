@@ -1,0 +1,51 @@
+// Decoding of the motion streams: the MOTN payload (segments and blend weights) and the
+// per-group transform payloads (a quantised rigid transform per segment per frame).
+#ifndef MESHVID_CODEC_DEC_MOTION_DECODER_H_
+#define MESHVID_CODEC_DEC_MOTION_DECODER_H_
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/common/motion.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// Quantisation steps of the transform tracks, stated in the MOTN payload.
+struct MotionQuantization {
+  float rotation_step = 1.0f / 65536;     ///< radians per unit of the rotation vector
+  float translation_step = 1.0f / 65536;  ///< capture units per unit of the translation
+};
+
+/// A transform as stored: rotation vector (axis * angle) and translation, in steps.
+struct QuantizedTransform {
+  std::array<std::int32_t, 3> rotation{};
+  std::array<std::int32_t, 3> translation{};
+  bool operator==(const QuantizedTransform&) const = default;
+};
+
+/// The transform a quantised one stands for.
+RigidTransform DequantizeTransform(const QuantizedTransform& q,
+                                   const MotionQuantization& quantization);
+
+/// The decoded MOTN payload.
+struct DecodedMotion {
+  MotionModel model;
+  MotionQuantization quantization;
+};
+
+/// Decodes a MOTN payload for a base mesh of `vertex_count` vertices.
+StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
+                                          std::size_t vertex_count);
+
+/// Decodes one group's transforms: result[frame][segment]. The group must hold
+/// `frame_count` frames of `segment_count` segments (as the container and MOTN say).
+StatusOr<std::vector<std::vector<RigidTransform>>> DecodeTransforms(
+    std::span<const std::uint8_t> payload, std::uint32_t frame_count,
+    std::uint32_t segment_count, const MotionQuantization& quantization);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_DEC_MOTION_DECODER_H_

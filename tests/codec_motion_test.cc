@@ -1,0 +1,128 @@
+// Tests of the motion model and its coding: posing, quantisation bounds, damaged payloads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "codec/common/motion.h"
+#include "codec/dec/motion_decoder.h"
+#include "codec/enc/motion_encoder.h"
+
+namespace meshvid {
+namespace {
+
+RigidTransform MakeTransform(float angle, const Eigen::Vector3f& axis, const Eigen::Vector3f& t) {
+  RigidTransform r;
+  r.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(angle, axis.normalized()));
+  r.translation = t;
+  return r;
+}
+
+TEST(MotionTest, PoseBlendsSegmentTransforms) {
+  MotionModel model;
+  model.segment_count = 2;
+  model.blends.resize(3);
+  model.blends[0] = {{{{0, 1.0f}}}, 1};
+  model.blends[1] = {{{{1, 1.0f}}}, 1};
+  model.blends[2] = {{{{0, 0.5f}, {1, 0.5f}}}, 2};
+  ASSERT_TRUE(ValidateMotionModel(model, 3).ok());
+  const std::vector<RigidTransform> transforms = {
+      MakeTransform(0, Eigen::Vector3f::UnitZ(), {1, 0, 0}),
+      MakeTransform(float(M_PI / 2), Eigen::Vector3f::UnitZ(), {0, 0, 0})};
+  const std::vector<Eigen::Vector3f> base = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}};
+  std::vector<Eigen::Vector3f> posed;
+  PoseVertices(model, transforms, base, &posed);
+  EXPECT_TRUE(posed[0].isApprox(Eigen::Vector3f(2, 0, 0)));
+  EXPECT_TRUE(posed[1].isApprox(Eigen::Vector3f(0, 1, 0), 1e-6f));
+  EXPECT_TRUE(posed[2].isApprox(Eigen::Vector3f(1, 0.5f, 0), 1e-6f));
+
+  model.blends[2].influences[1].weight = 0.3f;
+  EXPECT_EQ(ValidateMotionModel(model, 3).code(), StatusCode::kCorrupt);
+  model.blends[2].influences[1] = {2, 0.5f};
+  EXPECT_EQ(ValidateMotionModel(model, 3).message(), "motion: vertex 2 uses segment 2 of 2");
+}
+
+TEST(MotionTest, ModelRoundTripsWithWeightsSummingToOne) {
+  MotionModel model;
+  model.segment_count = 5;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> uniform(0.05f, 1.0f);
+  for (int v = 0; v < 500; ++v) {
+    VertexBlend blend;
+    blend.count = 1 + v % kMaxInfluences;
+    float sum = 0;
+    for (int i = 0; i < blend.count; ++i) {
+      blend.influences[i] = {static_cast<std::uint32_t>((v + i) % 5), uniform(rng)};
+      sum += blend.influences[i].weight;
+    }
+    for (int i = 0; i < blend.count; ++i) blend.influences[i].weight /= sum;
+    model.blends.push_back(blend);
+  }
+  const MotionQuantization quantization;
+  auto payload = EncodeMotionModel(model, quantization);
+  ASSERT_TRUE(payload.ok()) << payload.status().ToString();
+  auto decoded = DecodeMotionModel(*payload, 500);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  EXPECT_EQ(decoded->model.segment_count, 5u);
+  for (int v = 0; v < 500; ++v) {
+    const VertexBlend& a = model.blends[v];
+    const VertexBlend& b = decoded->model.blends[v];
+    ASSERT_EQ(a.count, b.count);
+    float sum = 0;
+    for (int i = 0; i < a.count; ++i) {
+      EXPECT_EQ(a.influences[i].segment, b.influences[i].segment);
+      EXPECT_NEAR(a.influences[i].weight, b.influences[i].weight, 2e-4f);
+      sum += b.influences[i].weight;
+    }
+    EXPECT_NEAR(sum, 1.0f, 1e-6f);
+  }
+  EXPECT_EQ(DecodeMotionModel(*payload, 499).status().code(), StatusCode::kCorrupt);
+}
+
+TEST(MotionTest, TransformsRoundTripWithinTheStatedSteps) {
+  MotionQuantization quantization;
+  quantization.rotation_step = 1e-4f;
+  quantization.translation_step = 1e-4f;
+  std::vector<std::vector<RigidTransform>> frames;
+  for (int f = 0; f < 40; ++f) {
+    frames.push_back({MakeTransform(0.02f * f, {0, 1, 0}, {0.01f * f, 0.5f, -0.2f}),
+                      MakeTransform(3.0f, {1, 1, 0}, {0.0f, 0.0f, 0.001f * f * f})});
+  }
+  auto encoded = EncodeTransforms(frames, quantization);
+  ASSERT_TRUE(encoded.ok());
+  auto decoded = DecodeTransforms(encoded->bytes, 40, 2, quantization);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  // A point at distance 1 moves by at most sqrt(3) steps of rotation and of translation.
+  const float bound = std::sqrt(3.0f) * 1e-4f;
+  const Eigen::Vector3f probe(0.6f, -0.8f, 0.0f);
+  for (int f = 0; f < 40; ++f) {
+    for (int s = 0; s < 2; ++s) {
+      const RigidTransform& d = (*decoded)[f][s];
+      EXPECT_LE((d.Apply(probe) - frames[f][s].Apply(probe)).norm(), 2 * bound);
+      EXPECT_TRUE(d.rotation.coeffs().isApprox(encoded->decoded[f][s].rotation.coeffs()));
+      EXPECT_EQ(d.translation, encoded->decoded[f][s].translation);
+    }
+  }
+  // Smooth tracks cost far less than the 24 bytes per transform of the raw body.
+  EXPECT_LT(encoded->bytes.size(), 40u * 2 * 24 / 3);
+}
+
+TEST(MotionTest, DamagedPayloadsFailCleanly) {
+  const std::vector<std::vector<RigidTransform>> frames(8, {RigidTransform{}, RigidTransform{}});
+  auto encoded = EncodeTransforms(frames, MotionQuantization{});
+  ASSERT_TRUE(encoded.ok());
+  const std::vector<std::uint8_t>& bytes = encoded->bytes;
+  EXPECT_EQ(DecodeTransforms(bytes, 9, 2, {}).status().code(), StatusCode::kCorrupt);
+  EXPECT_EQ(DecodeTransforms(bytes, 8, 3, {}).status().code(), StatusCode::kCorrupt);
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
+    EXPECT_FALSE(DecodeTransforms(std::span(bytes.data(), cut), 8, 2, {}).ok()) << cut;
+  }
+  auto model = EncodeMotionModel(SingleSegmentModel(10), MotionQuantization{});
+  ASSERT_TRUE(model.ok());
+  for (std::size_t cut = 0; cut < model->size(); ++cut) {
+    EXPECT_FALSE(DecodeMotionModel(std::span(model->data(), cut), 10).ok()) << cut;
+  }
+}
+
+}  // namespace
+}  // namespace meshvid

@@ -1,0 +1,112 @@
+// Runs the built `meshvid eval` (path in MESHVID_CLI, set by CTest) on OBJ sequences made in a
+// temporary directory, and checks its JSON and exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/test_util.h"
+#include "tools/io/mesh_io.h"
+
+namespace meshvid {
+namespace {
+
+/// Writes planes z = offset + 0.1 t as dir/NAME{frame:04}.obj, t = 0..count-1.
+void WritePlaneSequence(const testing::TempDir& dir, const std::string& name, int count,
+                        float offset, int resolution) {
+  for (int t = 0; t < count; ++t) {
+    char file[64];
+    std::snprintf(file, sizeof(file), "%s%04d.obj", name.c_str(), t);
+    TriangleMesh mesh = testing::MakeGridPlane(1.0f, resolution, offset + 0.1f * t);
+    ASSERT_TRUE(WriteMesh(dir.File(file), mesh).ok()) << file;
+  }
+}
+
+/// Runs the CLI with `arguments`; returns its exit code, stderr in *errors.
+int RunCli(const std::string& arguments, const testing::TempDir& dir, std::string* errors) {
+  const char* cli = std::getenv("MESHVID_CLI");
+  if (cli == nullptr) return -1;
+  const std::string command = std::string("'") + cli + "' " + arguments + " > '" +
+                              dir.File("stdout.txt") + "' 2> '" + dir.File("stderr.txt") + "'";
+  const int status = std::system(command.c_str());
+  *errors = testing::ReadFile(dir.File("stderr.txt"));
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class EvalCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (std::getenv("MESHVID_CLI") == nullptr) GTEST_SKIP() << "MESHVID_CLI is not set";
+  }
+  testing::TempDir dir_;
+};
+
+TEST_F(EvalCliTest, WritesJsonForTwoObjSequences) {
+  WritePlaneSequence(dir_, "ref", 3, 0.0f, 6);
+  WritePlaneSequence(dir_, "test", 3, 0.002f, 5);
+  std::string errors;
+  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+                              dir_.File("test{frame:04}.obj") +
+                              "' --samples 5000 --seed 3 --quiet --json '" +
+                              dir_.File("eval.json") + "'",
+                          dir_, &errors);
+  ASSERT_EQ(code, 0) << errors;
+  const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
+  EXPECT_EQ(j["settings"]["samples"], 5000);
+  EXPECT_EQ(j["settings"]["seed"], 3);
+  // Box over all frames: 1 x 1 x 0.2.
+  EXPECT_NEAR(j["peak"].get<double>(), std::sqrt(2.04), 1e-6);
+  ASSERT_EQ(j["frames"].size(), 3u);
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(j["frames"][t]["frame"], t);
+    EXPECT_NEAR(j["frames"][t]["accuracy_rms"].get<double>(), 0.002, 1e-6);
+    EXPECT_NEAR(j["frames"][t]["hausdorff"].get<double>(), 0.002, 1e-6);
+    EXPECT_EQ(j["frames"][t]["coverage"], 1.0);  // 0.002 < 0.25% of 1.43
+  }
+  EXPECT_NEAR(j["mean"]["completeness_rms"].get<double>(), 0.002, 1e-6);
+  const std::string table = testing::ReadFile(dir_.File("stdout.txt"));
+  EXPECT_NE(table.find("mean"), std::string::npos) << table;
+}
+
+TEST_F(EvalCliTest, FrameRangeSelectsFrames) {
+  WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
+  std::string errors;
+  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+                              dir_.File("ref{frame:04}.obj") +
+                              "' --samples 2000 --frames 1:3 --quiet --json '" +
+                              dir_.File("eval.json") + "'",
+                          dir_, &errors);
+  ASSERT_EQ(code, 0) << errors;
+  const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
+  ASSERT_EQ(j["frames"].size(), 2u);
+  EXPECT_EQ(j["frames"][0]["frame"], 1);
+  EXPECT_EQ(j["frames"][0]["d1_psnr"], "inf");
+}
+
+TEST_F(EvalCliTest, FrameCountMismatchFails) {
+  WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
+  WritePlaneSequence(dir_, "test", 2, 0.0f, 4);
+  std::string errors;
+  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+                              dir_.File("test{frame:04}.obj") + "' --samples 1000 --quiet",
+                          dir_, &errors);
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(errors.find("frame counts differ"), std::string::npos) << errors;
+}
+
+TEST_F(EvalCliTest, MissingTestFileNamesIt) {
+  WritePlaneSequence(dir_, "ref", 1, 0.0f, 2);
+  std::string errors;
+  const int code = RunCli("eval --ref '" + dir_.File("ref0000.obj") + "' --test '" +
+                              dir_.File("absent.obj") + "' --quiet",
+                          dir_, &errors);
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(errors.find("absent.obj"), std::string::npos) << errors;
+}
+
+}  // namespace
+}  // namespace meshvid

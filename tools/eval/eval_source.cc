@@ -1,0 +1,70 @@
+#include "tools/eval/eval_source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <utility>
+
+#include "tools/io/file_pattern.h"
+
+namespace meshvid {
+namespace {
+
+std::string LowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool LooksLikeCapture(const std::string& spec) {
+  if (FilePattern::LooksLikePattern(spec)) {
+    StatusOr<FilePattern> pattern = FilePattern::Parse(spec);
+    return pattern.ok() && pattern->has_view();
+  }
+  const std::string ext = LowerExtension(spec);
+  return ext == ".json" || ext == ".conf";
+}
+
+CaptureUnionSequence::CaptureUnionSequence(std::unique_ptr<CaptureSequence> capture)
+    : capture_(std::move(capture)) {}
+
+int CaptureUnionSequence::frame_count() const { return capture_->frame_count(); }
+
+double CaptureUnionSequence::frame_rate() const { return capture_->info().frame_rate; }
+
+StatusOr<TriangleMesh> CaptureUnionSequence::Frame(int t) {
+  if (t < 0 || t >= frame_count()) {
+    return InvalidArgumentError("frame " + std::to_string(t) + " is outside the capture (" +
+                                std::to_string(frame_count()) + " frames)");
+  }
+  MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, capture_->LoadFrame(t));
+  TriangleMesh all;
+  for (const TriangleMesh& view : views) AppendMesh(view, &all);
+  if (all.triangles.empty()) {
+    return InvalidArgumentError("frame " + std::to_string(t) + " of the capture (" +
+                                capture_->view_path(t, 0) + " ...) has no triangles in any view");
+  }
+  return all;
+}
+
+std::string CaptureUnionSequence::description() const {
+  return "capture of " + std::to_string(capture_->view_count()) + " views x " +
+         std::to_string(frame_count()) + " frames (" +
+         (frame_count() > 0 && capture_->view_count() > 0 ? capture_->view_path(0, 0)
+                                                          : std::string("empty")) +
+         " ...)";
+}
+
+StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec) {
+  if (LooksLikeCapture(spec)) {
+    MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<CaptureSequence> capture,
+                             CaptureSequence::Open(spec));
+    return std::unique_ptr<MeshSequence>(new CaptureUnionSequence(std::move(capture)));
+  }
+  return OpenMeshSequence(spec);
+}
+
+}  // namespace meshvid

@@ -1,0 +1,79 @@
+// Sequence-level evaluation: a test sequence against ground truth, frame by frame, with the
+// mean over frames, as a table for the terminal and as JSON.
+#ifndef MESHVID_TOOLS_EVAL_EVALUATION_H_
+#define MESHVID_TOOLS_EVAL_EVALUATION_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "codec/common/progress.h"
+#include "format/status.h"
+#include "tools/eval/metrics.h"
+#include "tools/io/mesh_sequence.h"
+
+namespace meshvid {
+
+/// Default coverage tolerance as a share of the peak p: 0.25% of the ground truth's
+/// bounding-box diagonal (about 5 mm for a 2 m subject).
+inline constexpr double kDefaultCoverageToleranceRatio = 0.0025;
+
+/// What to evaluate and how.
+struct EvalOptions {
+  /// Frames [first_frame, end_frame). end_frame < 0 means every frame, and then the reference
+  /// and the test must have the same frame count; otherwise both must hold the range.
+  int first_frame = 0;
+  int end_frame = -1;
+  std::size_t samples = 200000;  ///< area-weighted samples per surface and frame
+  std::uint64_t seed = 1;        ///< sampling seed (mixed with the frame number)
+  /// Absolute coverage tolerance; < 0 selects kDefaultCoverageToleranceRatio * peak.
+  double coverage_tolerance = -1;
+  /// PSNR peak; < 0 selects the diagonal of the reference's bounding box over ALL its frames
+  /// (not only the evaluated range, so a sub-range's PSNR compares with the full run's).
+  double peak = -1;
+};
+
+/// The outcome of an evaluation, with the settings that produced it.
+struct EvalResult {
+  std::string ref_description;
+  std::string test_description;
+  int first_frame = 0;
+  int end_frame = 0;
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+  double peak = 0;                ///< p used by the PSNRs
+  double coverage_tolerance = 0;  ///< absolute tolerance used by coverage
+  std::vector<FrameMetrics> frames;
+  /// Mean over frames of every field (frame = -1). The PSNRs are those of the mean MSEs,
+  /// 10 log10(3 p^2 / mean MSE): finite unless every frame is exact, never a mean of infinities.
+  FrameMetrics mean;
+};
+
+/// Diagonal of the bounding box of every frame of `sequence`, reporting progress as "bounds".
+StatusOr<double> SequenceBoundingBoxDiagonal(MeshSequence& sequence,
+                                             const ProgressCallback& progress = {});
+
+/// The mean of `frames` as described in EvalResult::mean; `peak` is used for the PSNRs.
+FrameMetrics MeanFrameMetrics(const std::vector<FrameMetrics>& frames, double peak);
+
+/// Evaluates `test` against the ground truth `ref` frame by frame, reporting progress as
+/// "evaluate" (one unit per frame). Fails with a clear message if the frame counts disagree
+/// over the range, a frame cannot be read, or a frame has no area.
+StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
+                                       const EvalOptions& options,
+                                       const ProgressCallback& progress = {});
+
+/// The result as JSON text: {"settings": {...}, "peak", "coverage_tolerance", "frames": [...],
+/// "mean": {...}}. An infinite PSNR is written as the string "inf".
+std::string EvalResultToJson(const EvalResult& result);
+
+/// Writes EvalResultToJson to `path`; fails naming the file if it cannot be written.
+Status WriteEvalJson(const EvalResult& result, const std::string& path);
+
+/// A fixed-width table: one row per frame, then the mean; an infinite PSNR prints as "inf".
+std::string FormatEvalTable(const EvalResult& result);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_TOOLS_EVAL_EVALUATION_H_

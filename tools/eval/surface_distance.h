@@ -1,0 +1,52 @@
+// Exact point-to-surface distance: the closest point on a triangle mesh, found with an
+// Embree 3 BVH point query (the closest_point approach of Embree's tutorials), computed in
+// double precision.
+#ifndef MESHVID_TOOLS_EVAL_SURFACE_DISTANCE_H_
+#define MESHVID_TOOLS_EVAL_SURFACE_DISTANCE_H_
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "codec/common/mesh.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection 5.1.5).
+Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Distance queries against one mesh. Build once, then query from any number of threads.
+class SurfaceDistance {
+ public:
+  /// Builds the acceleration structure over `mesh`'s triangles (copied; the mesh need not
+  /// outlive this object). Fails if the mesh has no triangles or Embree cannot start.
+  static StatusOr<std::unique_ptr<SurfaceDistance>> Build(const TriangleMesh& mesh);
+  ~SurfaceDistance();
+  SurfaceDistance(const SurfaceDistance&) = delete;
+  SurfaceDistance& operator=(const SurfaceDistance&) = delete;
+
+  /// Euclidean distance from `point` to the closest point of the surface. Thread-safe.
+  double Distance(const Eigen::Vector3f& point) const;
+
+  /// As Distance(point), starting the search from triangle `hint_triangle` (e.g. the triangle
+  /// of a nearby sample): the distance to it bounds the search, which makes it much faster.
+  double DistanceFrom(const Eigen::Vector3f& point, std::uint32_t hint_triangle) const;
+
+ private:
+  SurfaceDistance() = default;
+  /// The search, pruned to `radius` with `best_squared` already found; +inf if none within.
+  double Search(const Eigen::Vector3f& point, double radius, double best_squared) const;
+  struct Embree;
+  std::unique_ptr<Embree> embree_;
+  std::vector<Eigen::Vector3d> positions_;
+  std::vector<Triangle> triangles_;
+};
+
+}  // namespace meshvid
+
+#endif  // MESHVID_TOOLS_EVAL_SURFACE_DISTANCE_H_

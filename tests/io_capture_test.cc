@@ -349,6 +349,14 @@ TEST(CaptureWindowTest, NeverHoldsMoreThanCapacity) {
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(*first, *again);
   EXPECT_EQ(large.loaded_frames(), 2);
+
+  // Least recently used goes first: after 0, 1, 0 the next load drops frame 1, not frame 0.
+  CaptureWindow lru(capture->get(), 2);
+  const auto zero = lru.Get(0);
+  ASSERT_TRUE(zero.ok() && lru.Get(1).ok() && lru.Get(0).ok() && lru.Get(2).ok());
+  const auto zero_again = lru.Get(0);
+  ASSERT_TRUE(zero_again.ok());
+  EXPECT_EQ(*zero, *zero_again);  // still loaded: the very same object
 }
 
 TEST(CaptureBunnyTest, StanfordBunnyScansOverlapOncePosed) {

@@ -29,6 +29,12 @@ Status ValidateMesh(const TriangleMesh& mesh, std::string_view what) {
     return CorruptError(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
                         std::to_string(n) + " vertices");
   }
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+    if (!mesh.normals[i].allFinite()) {
+      return CorruptError(name + ": normal " + std::to_string(i) +
+                          " has a NaN or infinite component");
+    }
+  }
   return Status::Ok();
 }
 

@@ -30,7 +30,7 @@ struct TriangleMesh {
 };
 
 /// Checks what every consumer of a mesh relies on: at least one triangle, every coordinate
-/// finite, every index in range, normals absent or one per vertex. `what` names the mesh in
+/// finite, every index in range, normals absent or one finite normal per vertex. `what` names the mesh in
 /// the message (usually its file).
 Status ValidateMesh(const TriangleMesh& mesh, std::string_view what);
 

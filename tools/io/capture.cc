@@ -261,11 +261,13 @@ CaptureWindow::CaptureWindow(const CaptureSequence* capture, int capacity)
     : capture_(capture), capacity_(std::max(1, capacity)) {}
 
 StatusOr<const std::vector<TriangleMesh>*> CaptureWindow::Get(int frame) {
-  // A hit leaves the deque untouched, so every reference handed out stays valid; frames are
-  // evicted in the order they were loaded, which is the least recently used order for the
-  // forward sliding access of the encoder.
-  for (const auto& [loaded_frame, meshes] : frames_) {
-    if (loaded_frame == frame) return &meshes;
+  // A hit moves the frame to the back (most recently used); splicing a list node keeps
+  // every reference handed out valid.
+  for (auto it = frames_.begin(); it != frames_.end(); ++it) {
+    if (it->first == frame) {
+      frames_.splice(frames_.end(), frames_, it);
+      return &frames_.back().second;
+    }
   }
   MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> meshes, capture_->LoadFrame(frame));
   // Evict before inserting so the window never exceeds its capacity, even momentarily.

@@ -3,7 +3,7 @@
 #ifndef MESHVID_TOOLS_IO_CAPTURE_H_
 #define MESHVID_TOOLS_IO_CAPTURE_H_
 
-#include <deque>
+#include <list>
 #include <memory>
 #include <string>
 #include <utility>
@@ -82,7 +82,7 @@ class CaptureWindow {
  private:
   const CaptureSequence* capture_;
   int capacity_;
-  std::deque<std::pair<int, std::vector<TriangleMesh>>> frames_;  // most recent at the back
+  std::list<std::pair<int, std::vector<TriangleMesh>>> frames_;  // most recent at the back
 };
 
 /// Writes `manifest.json` for a capture whose view files already exist (used by the

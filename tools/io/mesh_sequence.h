@@ -34,7 +34,8 @@ class MeshSequence {
 ///  - a pattern with a `{frame}` placeholder (`{frame:04}` zero-pads to 4 digits), frames
 ///    numbered contiguously from the smallest number present;
 ///  - a single `.obj`/`.ply` file without a `.pc2` beside it (a one-frame sequence).
-/// `frame_rate` is used when the source does not store one (.pc2 does).
+/// `frame_rate` is the sequence's rate in frames per second (a .pc2's sampleRate is a frame
+/// step, usually 1, not a rate, so the caller's value is used for every source).
 StatusOr<std::unique_ptr<MeshSequence>> OpenMeshSequence(const std::string& spec,
                                                          double frame_rate = 25.0);
 

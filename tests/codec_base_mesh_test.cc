@@ -12,6 +12,7 @@ TEST(BaseMeshCoderTest, RoundTripKeepsTheMeshWithinQuantisation) {
   const TriangleMesh mesh = testing::MakeGridPlane(2.0f, 20, 0.5f);
   BaseMeshEncoding settings;
   settings.position_bits = 14;
+  settings.preserve_order = false;  // edgebreaker
   auto encoded = EncodeBaseMesh(mesh, settings);
   ASSERT_TRUE(encoded.ok()) << encoded.status().ToString();
   EXPECT_EQ(encoded->decoded.vertex_count(), mesh.vertex_count());
@@ -33,6 +34,18 @@ TEST(BaseMeshCoderTest, RoundTripKeepsTheMeshWithinQuantisation) {
   ASSERT_TRUE(decoded.ok());
   EXPECT_EQ(decoded->positions, encoded->decoded.positions);
   EXPECT_EQ(decoded->triangles, encoded->decoded.triangles);
+}
+
+TEST(BaseMeshCoderTest, SequentialCodingKeepsVertexAndTriangleOrder) {
+  const TriangleMesh mesh = testing::MakeGridPlane(2.0f, 20, 0.5f);
+  auto encoded = EncodeBaseMesh(mesh);  // preserve_order is the default
+  ASSERT_TRUE(encoded.ok());
+  ASSERT_EQ(encoded->decoded.vertex_count(), mesh.vertex_count());
+  EXPECT_EQ(encoded->decoded.triangles, mesh.triangles);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_LE((encoded->decoded.positions[v] - mesh.positions[v]).cwiseAbs().maxCoeff(),
+              2.0f / (1 << 16));
+  }
 }
 
 TEST(BaseMeshCoderTest, DamagedStreamsFailCleanly) {

@@ -50,11 +50,13 @@ class RegularSubdivision {
   const std::vector<Triangle>& base_triangles() const { return base_triangles_; }
   /// Number of base vertices (= sample_count(0)).
   std::size_t base_vertex_count() const { return level_sample_counts_[0]; }
-
- private:
-  /// Index of lattice point (i, j) of base triangle t in samples_.
+  /// Segments per base edge at the finest level, 2^levels().
+  int segments_per_edge() const { return n_; }
+  /// The sample at lattice point (i, j) of base triangle t (0 <= i, j, i + j <= n): the
+  /// point with weights (1 - i/n - j/n, i/n, j/n) of the triangle's corners.
   std::uint32_t LatticeSample(std::size_t t, int i, int j) const;
 
+ private:
   int levels_ = 0;
   int n_ = 1;
   std::size_t points_per_triangle_ = 3;

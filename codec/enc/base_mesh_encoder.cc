@@ -40,7 +40,8 @@ StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, settings.position_bits);
   encoder.SetSpeedOptions(settings.encoding_speed, settings.encoding_speed);
-  encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
+  encoder.SetEncodingMethod(settings.preserve_order ? draco::MESH_SEQUENTIAL_ENCODING
+                                                    : draco::MESH_EDGEBREAKER_ENCODING);
   draco::EncoderBuffer buffer;
   const draco::Status status = encoder.EncodeMeshToBuffer(draco_mesh, &buffer);
   if (!status.ok()) return InternalError("Draco cannot encode the base mesh: " +

@@ -14,6 +14,10 @@ namespace meshvid {
 struct BaseMeshEncoding {
   int position_bits = 16;   ///< position quantisation (Draco: 1..30 bits per coordinate)
   int encoding_speed = 0;   ///< Draco speed, 0 (best compression) .. 10 (fastest)
+  /// Draco's sequential coder keeps vertex and triangle order, so data indexed by base vertex
+  /// (blend weights, the subdivision lattice) needs no remapping; edgebreaker codes smaller
+  /// but renumbers. The base mesh is coded once per file, so order wins by default.
+  bool preserve_order = true;
 };
 
 /// A coded base mesh and the mesh a decoder will reconstruct from it (Draco reorders vertices
@@ -23,7 +27,7 @@ struct EncodedBaseMesh {
   TriangleMesh decoded;
 };
 
-/// Codes positions and triangles with Draco's edgebreaker and decodes the result again.
+/// Codes positions and triangles with Draco and decodes the result again.
 StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
                                          const BaseMeshEncoding& settings = {});
 

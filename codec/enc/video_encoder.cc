@@ -38,7 +38,7 @@ Status ConfigureCodec(const VideoEncoding& s, AVCodecContext* context) {
       // Constant QP; key frames only where the caller starts a group (forced IDR, closed).
       const std::string params = "qp=" + std::to_string(s.qp) +
                                  ":keyint=100000:min-keyint=100000:scenecut=0:open-gop=0"
-                                 ":log-level=none";
+                                 ":repeat-headers=1:log-level=none";
       if (av_opt_set(priv, "preset", X265Preset(s.effort), 0) < 0 ||
           av_opt_set(priv, "x265-params", params.c_str(), 0) < 0 ||
           av_opt_set_int(priv, "forced-idr", 1, 0) < 0) {
@@ -58,7 +58,9 @@ Status ConfigureCodec(const VideoEncoding& s, AVCodecContext* context) {
     }
     case VideoCodec::kFfv1: {
       context->gop_size = 1;  // intra only
+      // FFV1 version 3: its configuration record (extradata) travels with each group.
       context->level = 3;
+      context->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
       if (av_opt_set_int(priv, "slicecrc", 1, 0) < 0) {
         return InternalError("ffv1 rejected its options");
       }
@@ -113,7 +115,8 @@ StatusOr<std::unique_ptr<VideoEncoder>> VideoEncoder::Create(const VideoEncoding
   context->framerate = av_d2q(settings.frame_rate, 100000);
   context->time_base = av_inv_q(context->framerate);
   context->thread_count = settings.threads;
-  context->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  // HEVC and AV1 send their parameter sets in-band with every key frame, so a group of
+  // frames needs no configuration record; FFV1 (below) does.
   MESHVID_RETURN_IF_ERROR(ConfigureCodec(settings, context));
   const int error = avcodec_open2(context, encoder, nullptr);
   if (error < 0) return FfmpegError("cannot open the video encoder", error);

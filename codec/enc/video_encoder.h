@@ -31,7 +31,8 @@ class VideoEncoder {
  public:
   ~VideoEncoder();
   static StatusOr<std::unique_ptr<VideoEncoder>> Create(const VideoEncoding& settings);
-  /// The global header a decoder needs (may be empty).
+  /// The configuration record a decoder needs: FFV1's; empty for HEVC and AV1, which send
+  /// their parameter sets in-band with every key frame.
   const std::vector<std::uint8_t>& extradata() const { return extradata_; }
   /// Encodes one picture (width x height samples in 0..1023); appends finished packets.
   Status Encode(const GreyPicture& picture, bool group_start, std::vector<VideoPacket>* out);

@@ -1,0 +1,41 @@
+// The codec's side information of a group of frames, carried in the GOF chunk's `transforms`
+// field: the displacement quantiser of the group, the configuration record of the group's
+// video encoder session (FFV1 needs one; HEVC and AV1 send theirs in-band, so it is empty),
+// then the group's transform track payload.
+//   u8 side_info_version (1) | f32 displacement_minimum | f32 displacement_step |
+//   u32 video_config_size | video_config bytes | transforms payload (motion_decoder.h)
+#ifndef MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_
+#define MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/common/displacement_image.h"
+#include "codec/common/motion.h"
+#include "codec/dec/motion_decoder.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// Decoded side information of one group.
+struct GofSideInfo {
+  DisplacementRange displacement_range;
+  std::vector<std::uint8_t> video_config;  ///< the video decoder's configuration record
+  std::vector<std::vector<RigidTransform>> transforms;  ///< [frame in group][segment]
+};
+
+/// Parses a group's side information (frame and segment counts as the container says).
+StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
+                                        std::uint32_t frame_count, std::uint32_t segment_count,
+                                        const MotionQuantization& quantization);
+
+/// The bytes of a group's side information from its range, video configuration record and
+/// coded transforms.
+std::vector<std::uint8_t> EncodeGofSideInfo(const DisplacementRange& range,
+                                            std::span<const std::uint8_t> video_config,
+                                            std::span<const std::uint8_t> transforms_payload);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_

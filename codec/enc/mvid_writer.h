@@ -1,0 +1,92 @@
+// MvidWriter: turns an already-computed representation (base mesh, motion model, per-frame
+// segment transforms, per-frame displacement fields) into a .mvid file, in one pass.
+#ifndef MESHVID_CODEC_ENC_MVID_WRITER_H_
+#define MESHVID_CODEC_ENC_MVID_WRITER_H_
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "codec/common/displacement_image.h"
+#include "codec/common/motion.h"
+#include "codec/common/subdivision.h"
+#include "codec/dec/motion_decoder.h"
+#include "codec/enc/base_mesh_encoder.h"
+#include "format/container_writer.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// Settings of a .mvid file.
+struct MvidWriterSettings {
+  int levels = 3;             ///< subdivision levels of the displacement lattice (0..6)
+  VideoCodec codec = VideoCodec::kHevc;
+  int qp = 16;                ///< video quantiser (see VideoEncoding::qp)
+  int effort = 4;             ///< video encoder effort 0..9
+  int threads = 0;            ///< video encoder threads, 0: automatic
+  int gof_size = 32;          ///< frames per group (the random-access unit)
+  double frame_rate = 25.0;
+  std::uint32_t frame_count = 0;  ///< total frames if known up front (0: unknown)
+  MotionQuantization motion;
+  BaseMeshEncoding base;
+  std::string metadata_json = "{}";  ///< free-form JSON object stored in the header
+};
+
+/// Bytes written per stream so far.
+struct MvidWriteStats {
+  std::uint64_t base_bytes = 0;
+  std::uint64_t motion_bytes = 0;     ///< MOTN: segments and blend weights
+  std::uint64_t transform_bytes = 0;  ///< group side information: transforms and ranges
+  std::uint64_t video_bytes = 0;      ///< displacement video packets
+  std::uint64_t total_bytes = 0;      ///< everything, container overhead included
+  std::uint32_t frames = 0;
+};
+
+/// Writes a .mvid: Create() codes the base mesh and motion model, then WriteGroup() once per
+/// group of frames, then Finish(). Everything the caller computes downstream of the base mesh
+/// and transforms should use decoded_base() and DequantizeTransforms() (closed loop).
+class MvidWriter {
+ public:
+  ~MvidWriter();
+  /// `motion` has one blend per base vertex. Writes the header, base mesh and motion.
+  static StatusOr<std::unique_ptr<MvidWriter>> Create(ByteSink sink, const TriangleMesh& base,
+                                                      const MotionModel& motion,
+                                                      const MvidWriterSettings& settings);
+
+  /// The base mesh a decoder reconstructs (Draco-quantised positions, same order).
+  const TriangleMesh& decoded_base() const { return decoded_base_; }
+  /// The displacement lattice; displacement fields hold samples() in its order.
+  const RegularSubdivision& subdivision() const { return subdivision_; }
+  const MvidWriterSettings& settings() const { return settings_; }
+  /// The transforms a decoder will use for these, after quantisation.
+  std::vector<std::vector<RigidTransform>> DequantizeTransforms(
+      const std::vector<std::vector<RigidTransform>>& transforms) const;
+
+  /// Writes one group: `transforms[frame][segment]` and `displacements[frame][sample]`
+  /// (subdivision().samples().size() each), 1..gof_size frames.
+  Status WriteGroup(const std::vector<std::vector<RigidTransform>>& transforms,
+                    const std::vector<std::vector<float>>& displacements);
+  /// Writes the index and trailer.
+  Status Finish();
+  const MvidWriteStats& stats() const { return stats_; }
+
+ private:
+  MvidWriter() = default;
+  MvidWriterSettings settings_;
+  std::unique_ptr<ContainerWriter> container_;
+  TriangleMesh decoded_base_;
+  MotionModel motion_;
+  RegularSubdivision subdivision_;
+  DisplacementLayout layout_;
+  MvidWriteStats stats_;
+  std::uint32_t next_frame_ = 0;
+  std::uint32_t next_gof_ = 0;
+};
+
+/// The codec tag of a video codec in the container's stream table ("hevc", "av01", "ffv1").
+std::string VideoCodecTag(VideoCodec codec);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_MVID_WRITER_H_

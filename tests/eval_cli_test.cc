@@ -1,7 +1,6 @@
 // Runs the built `meshvid eval` (path in MESHVID_CLI, set by CTest) on OBJ sequences made in a
 // temporary directory, and checks its JSON and exit codes.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -26,35 +25,20 @@ void WritePlaneSequence(const testing::TempDir& dir, const std::string& name, in
   }
 }
 
-/// Runs the CLI with `arguments`; returns its exit code, stderr in *errors.
-int RunCli(const std::string& arguments, const testing::TempDir& dir, std::string* errors) {
-  const char* cli = std::getenv("MESHVID_CLI");
-  if (cli == nullptr) return -1;
-  const std::string command = std::string("'") + cli + "' " + arguments + " > '" +
-                              dir.File("stdout.txt") + "' 2> '" + dir.File("stderr.txt") + "'";
-  const int status = std::system(command.c_str());
-  *errors = testing::ReadFile(dir.File("stderr.txt"));
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 class EvalCliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    if (std::getenv("MESHVID_CLI") == nullptr) GTEST_SKIP() << "MESHVID_CLI is not set";
-  }
+  void SetUp() override { MESHVID_REQUIRE_CLI(); }
   testing::TempDir dir_;
 };
 
 TEST_F(EvalCliTest, WritesJsonForTwoObjSequences) {
   WritePlaneSequence(dir_, "ref", 3, 0.0f, 6);
   WritePlaneSequence(dir_, "test", 3, 0.002f, 5);
-  std::string errors;
-  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+  const testing::CliRun run = testing::RunMeshvid("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
                               dir_.File("test{frame:04}.obj") +
                               "' --samples 5000 --seed 3 --quiet --json '" +
-                              dir_.File("eval.json") + "'",
-                          dir_, &errors);
-  ASSERT_EQ(code, 0) << errors;
+                              dir_.File("eval.json") + "'", dir_);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
   EXPECT_EQ(j["settings"]["samples"], 5000);
   EXPECT_EQ(j["settings"]["seed"], 3);
@@ -68,19 +52,16 @@ TEST_F(EvalCliTest, WritesJsonForTwoObjSequences) {
     EXPECT_EQ(j["frames"][t]["coverage"], 1.0);  // 0.002 < 0.25% of 1.43
   }
   EXPECT_NEAR(j["mean"]["completeness_rms"].get<double>(), 0.002, 1e-6);
-  const std::string table = testing::ReadFile(dir_.File("stdout.txt"));
-  EXPECT_NE(table.find("mean"), std::string::npos) << table;
+  EXPECT_NE(run.out.find("mean"), std::string::npos) << run.out;
 }
 
 TEST_F(EvalCliTest, FrameRangeSelectsFrames) {
   WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
-  std::string errors;
-  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+  const testing::CliRun run = testing::RunMeshvid("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
                               dir_.File("ref{frame:04}.obj") +
                               "' --samples 2000 --frames 1:3 --quiet --json '" +
-                              dir_.File("eval.json") + "'",
-                          dir_, &errors);
-  ASSERT_EQ(code, 0) << errors;
+                              dir_.File("eval.json") + "'", dir_);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
   ASSERT_EQ(j["frames"].size(), 2u);
   EXPECT_EQ(j["frames"][0]["frame"], 1);
@@ -90,22 +71,18 @@ TEST_F(EvalCliTest, FrameRangeSelectsFrames) {
 TEST_F(EvalCliTest, FrameCountMismatchFails) {
   WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
   WritePlaneSequence(dir_, "test", 2, 0.0f, 4);
-  std::string errors;
-  const int code = RunCli("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
-                              dir_.File("test{frame:04}.obj") + "' --samples 1000 --quiet",
-                          dir_, &errors);
-  EXPECT_EQ(code, 1);
-  EXPECT_NE(errors.find("frame counts differ"), std::string::npos) << errors;
+  const testing::CliRun run = testing::RunMeshvid("eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+                              dir_.File("test{frame:04}.obj") + "' --samples 1000 --quiet", dir_);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("frame counts differ"), std::string::npos) << run.err;
 }
 
 TEST_F(EvalCliTest, MissingTestFileNamesIt) {
   WritePlaneSequence(dir_, "ref", 1, 0.0f, 2);
-  std::string errors;
-  const int code = RunCli("eval --ref '" + dir_.File("ref0000.obj") + "' --test '" +
-                              dir_.File("absent.obj") + "' --quiet",
-                          dir_, &errors);
-  EXPECT_EQ(code, 1);
-  EXPECT_NE(errors.find("absent.obj"), std::string::npos) << errors;
+  const testing::CliRun run = testing::RunMeshvid("eval --ref '" + dir_.File("ref0000.obj") + "' --test '" +
+                              dir_.File("absent.obj") + "' --quiet", dir_);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("absent.obj"), std::string::npos) << run.err;
 }
 
 }  // namespace

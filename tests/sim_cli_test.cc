@@ -1,6 +1,5 @@
 // `meshvid simulate` end to end (the binary path comes from MESHVID_CLI, set by CTest).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,27 +11,14 @@
 namespace meshvid {
 namespace {
 
-/// Runs `meshvid ARGS`, output to `log`; returns the exit code (-1 if it did not exit).
-int RunCli(const std::string& args, const std::string& log) {
-  const std::string command =
-      std::string("\"") + std::getenv("MESHVID_CLI") + "\" " + args + " > \"" + log + "\" 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-#define MESHVID_REQUIRE_CLI()                                                   \
-  if (std::getenv("MESHVID_CLI") == nullptr) GTEST_SKIP() << "MESHVID_CLI is not set; " \
-                                                 "run through ctest"
-
 TEST(SimulateCliTest, SimulatesTheClothScene) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
   const std::string out = dir.File("cap");
-  ASSERT_EQ(RunCli("simulate scene:cloth -o \"" + out + "\" --frames 0:2 --res 160x120",
-                   dir.File("log")),
-            0)
-      << testing::ReadFile(dir.File("log"));
-  const std::string log = testing::ReadFile(dir.File("log"));
+  const testing::CliRun run =
+      testing::RunMeshvid("simulate scene:cloth -o \"" + out + "\" --frames 0:2 --res 160x120", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string log = run.out + run.err;
   EXPECT_NE(log.find("Simulated 2 frames x 3 views (160x120"), std::string::npos) << log;
   for (const char* name : {"f0000_v0.ply", "f0000_v1.ply", "f0000_v2.ply", "f0001_v0.ply",
                            "f0001_v1.ply", "f0001_v2.ply", "manifest.json", "simulate.json",
@@ -67,16 +53,16 @@ TEST(SimulateCliTest, BadArgumentsAreUsageErrorsWithAMessage) {
       {"\"" + dir.File("missing.obj") + "\"" + out, 1, "missing.obj"},
   };
   for (const Case& c : cases) {
-    const int code = RunCli("simulate " + c.args, dir.File("log"));
-    const std::string log = testing::ReadFile(dir.File("log"));
-    EXPECT_EQ(code, c.exit_code) << c.args << "\n" << log;
+    const testing::CliRun run = testing::RunMeshvid("simulate " + c.args, dir);
+    const std::string log = run.out + run.err;
+    EXPECT_EQ(run.exit_code, c.exit_code) << c.args << "\n" << log;
     EXPECT_NE(log.find(c.message), std::string::npos) << c.args << "\n" << log;
   }
   testing::WriteFile(dir.File("blocker"), "x");
-  EXPECT_EQ(RunCli("simulate scene:cloth -o \"" + dir.File("blocker") + "/sub\" --frames 0:1",
-                   dir.File("log")),
-            1);
-  EXPECT_NE(testing::ReadFile(dir.File("log")).find("blocker"), std::string::npos);
+  const testing::CliRun blocked = testing::RunMeshvid(
+      "simulate scene:cloth -o \"" + dir.File("blocker") + "/sub\" --frames 0:1", dir);
+  EXPECT_EQ(blocked.exit_code, 1);
+  EXPECT_NE(blocked.err.find("blocker"), std::string::npos) << blocked.err;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -40,6 +41,22 @@ std::string ReadFile(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+bool HaveMeshvidCli() { return std::getenv("MESHVID_CLI") != nullptr; }
+
+CliRun RunMeshvid(const std::string& arguments, const TempDir& dir) {
+  CliRun run;
+  const char* cli = std::getenv("MESHVID_CLI");
+  if (cli == nullptr) return run;
+  const std::string out = dir.File("meshvid_stdout.txt"), err = dir.File("meshvid_stderr.txt");
+  const std::string command = std::string("'") + cli + "' " + arguments + " > '" + out +
+                              "' 2> '" + err + "' < /dev/null";
+  const int status = std::system(command.c_str());
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = ReadFile(out);
+  run.err = ReadFile(err);
+  return run;
 }
 
 TriangleMesh MakeGridPlane(float size, int n, float z) {

@@ -32,6 +32,19 @@ void WriteFile(const std::string& path, const std::string& contents);
 /// Reads a whole file into a string.
 std::string ReadFile(const std::string& path);
 
+/// What a run of the built `meshvid` executable printed and returned.
+struct CliRun {
+  int exit_code = -1;  ///< -1 if it did not exit normally
+  std::string out;     ///< standard output
+  std::string err;     ///< standard error
+};
+
+/// True if the path of the built `meshvid` is known (MESHVID_CLI, set by CTest).
+bool HaveMeshvidCli();
+/// Runs `meshvid ARGUMENTS` (a shell command line tail; quote paths), capturing its output
+/// in files of `dir`.
+CliRun RunMeshvid(const std::string& arguments, const TempDir& dir);
+
 /// A flat square grid mesh in the z = `z` plane, side `size`, `n` x `n` quads, centred on the
 /// origin, normals along +z.
 TriangleMesh MakeGridPlane(float size, int n, float z = 0.0f);
@@ -44,5 +57,10 @@ TriangleMesh MakeGridPlane(float size, int n, float z = 0.0f);
   const std::string shared_data = ::meshvid::testing::SharedDataDir();               \
   if (shared_data.empty()) GTEST_SKIP() << "shared data (../shared/data) is absent; " \
                                            "set MESHVID_SHARED_DATA to run this test"
+
+/// Skips the current test when the built `meshvid` is unknown (run outside CTest).
+#define MESHVID_REQUIRE_CLI()                         \
+  if (!::meshvid::testing::HaveMeshvidCli())          \
+  GTEST_SKIP() << "MESHVID_CLI is not set; run this test through ctest"
 
 #endif  // MESHVID_TESTS_TEST_UTIL_H_

@@ -26,13 +26,14 @@ struct EvalArguments {
   double coverage_tolerance = -1;
   double peak = -1;
   std::uint64_t seed = 1;
+  int level = -1;
   bool quiet = false;
 };
 
 int RunEval(const EvalArguments& args) {
   StatusOr<std::unique_ptr<MeshSequence>> ref = OpenGroundTruth(args.ref);
   if (!ref.ok()) return ReportError(ref.status().WithContext("--ref " + args.ref));
-  StatusOr<std::unique_ptr<MeshSequence>> test = OpenEvalTestSource(args.test);
+  StatusOr<std::unique_ptr<MeshSequence>> test = OpenEvalTestSource(args.test, args.level);
   if (!test.ok()) return ReportError(test.status().WithContext("--test " + args.test));
 
   EvalOptions options;
@@ -73,9 +74,12 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "Ground truth: scene:NAME, NAME.obj (+NAME.pc2), a folder or a {frame} pattern")
       ->required();
   cmd->add_option("--test", args->test,
-                  "Test: a mesh sequence (as --ref) or a capture (manifest.json, .conf, a\n"
-                  "{frame}+{view} pattern: the union of its views per frame)")
+                  "Test: a .mvid (decoded at --level), a mesh sequence (as --ref) or a capture\n"
+                  "(manifest.json, .conf, a {frame}+{view} pattern: the union of its views)")
       ->required();
+  cmd->add_option("--level", args->level,
+                  "Level at which a .mvid test is decoded (default: the finest stored)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
   cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")

@@ -9,6 +9,8 @@ namespace meshvid::cli {
 
 void AddSimulateCommand(CLI::App& app, int* exit_code);
 void AddEvalCommand(CLI::App& app, int* exit_code);
+void AddInfoCommand(CLI::App& app, int* exit_code);
+void AddDecodeCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   meshvid::cli::AddSimulateCommand(app, &exit_code);
   meshvid::cli::AddEvalCommand(app, &exit_code);
+  meshvid::cli::AddInfoCommand(app, &exit_code);
+  meshvid::cli::AddDecodeCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -58,7 +58,39 @@ std::string CaptureUnionSequence::description() const {
          " ...)";
 }
 
-StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec) {
+StatusOr<std::unique_ptr<MvidSequence>> MvidSequence::Open(const std::string& path, int level) {
+  std::unique_ptr<MvidSequence> sequence(new MvidSequence());
+  sequence->path_ = path;
+  MESHVID_ASSIGN_OR_RETURN(sequence->decoder_, MvidDecoder::OpenFile(path));
+  const int levels = sequence->decoder_->info().levels;
+  sequence->level_ = level < 0 ? levels : level;
+  if (sequence->level_ > levels) {
+    return InvalidArgumentError(path + " stores levels 0.." + std::to_string(levels) +
+                                ", not " + std::to_string(level));
+  }
+  return sequence;
+}
+
+int MvidSequence::frame_count() const {
+  return static_cast<int>(decoder_->info().frame_count);
+}
+
+double MvidSequence::frame_rate() const { return decoder_->info().frame_rate; }
+
+StatusOr<TriangleMesh> MvidSequence::Frame(int t) {
+  if (t < 0) return InvalidArgumentError("frame " + std::to_string(t) + " is negative");
+  return decoder_->DecodeFrame(static_cast<std::uint32_t>(t), level_);
+}
+
+std::string MvidSequence::description() const {
+  return path_ + " at level " + std::to_string(level_);
+}
+
+StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec, int level) {
+  if (spec.size() > 5 && spec.compare(spec.size() - 5, 5, ".mvid") == 0) {
+    MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidSequence> mvid, MvidSequence::Open(spec, level));
+    return std::unique_ptr<MeshSequence>(std::move(mvid));
+  }
   if (LooksLikeCapture(spec)) {
     MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<CaptureSequence> capture,
                              CaptureSequence::Open(spec));

@@ -1,6 +1,6 @@
 // What `meshvid eval` measures: every test source is a MeshSequence (one surface per frame).
 // Mesh sequences are used as they are; a capture becomes the union of its views per frame.
-// A new kind of source (e.g. a decoded .mvid at a chosen level) is one more MeshSequence
+// A decoded .mvid is one at a chosen level. A new kind of source is one more MeshSequence
 // adapter and one more branch in OpenEvalTestSource.
 #ifndef MESHVID_TOOLS_EVAL_EVAL_SOURCE_H_
 #define MESHVID_TOOLS_EVAL_EVAL_SOURCE_H_
@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "codec/dec/mvid_decoder.h"
 #include "format/status.h"
 #include "tools/io/capture.h"
 #include "tools/io/mesh_sequence.h"
@@ -33,9 +34,29 @@ class CaptureUnionSequence : public MeshSequence {
   std::unique_ptr<CaptureSequence> capture_;
 };
 
-/// Opens the test side of an evaluation: a capture (see LooksLikeCapture; opened with
-/// CaptureSequence::Open) or anything OpenMeshSequence accepts.
-StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec);
+/// A decoded .mvid at one level as a MeshSequence (same triangles at every frame).
+class MvidSequence : public MeshSequence {
+ public:
+  /// Opens `path` and checks `level` (-1: the finest level stored).
+  static StatusOr<std::unique_ptr<MvidSequence>> Open(const std::string& path, int level);
+  int frame_count() const override;
+  double frame_rate() const override;
+  bool fixed_connectivity() const override { return true; }
+  StatusOr<TriangleMesh> Frame(int t) override;
+  std::string description() const override;
+
+ private:
+  MvidSequence() = default;
+  std::string path_;
+  int level_ = 0;
+  std::unique_ptr<MvidDecoder> decoder_;
+};
+
+/// Opens the test side of an evaluation: a .mvid decoded at `level` (-1: finest), a capture
+/// (see LooksLikeCapture; opened with CaptureSequence::Open) or anything OpenMeshSequence
+/// accepts.
+StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec,
+                                                           int level = -1);
 
 }  // namespace meshvid
 

@@ -1,0 +1,91 @@
+// `meshvid decode`: a .mvid to one mesh file per frame, at a chosen level.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "codec/dec/mvid_decoder.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/terminal.h"
+#include "tools/io/file_pattern.h"
+#include "tools/io/mesh_io.h"
+
+namespace meshvid::cli {
+namespace {
+
+struct DecodeArguments {
+  std::string file;
+  std::string output;
+  int level = -1;
+  std::string frames;
+  bool ascii = false;
+  bool quiet = false;
+};
+
+int RunDecode(const DecodeArguments& args) {
+  StatusOr<FilePattern> pattern = FilePattern::Parse(args.output);
+  if (!pattern.ok()) return ReportError(pattern.status().WithContext("-o"));
+  if (!pattern->has_frame() || pattern->has_view()) {
+    std::fprintf(stderr, "meshvid: -o needs a {frame} placeholder and no {view}, e.g. "
+                         "out/f{frame:04}.ply\n");
+    return 2;
+  }
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(args.file);
+  if (!decoder.ok()) return ReportError(decoder.status());
+  const MvidInfo& info = (*decoder)->info();
+  const int level = args.level < 0 ? info.levels : args.level;
+  if (level > info.levels) {
+    return ReportError(InvalidArgumentError(args.file + " stores levels 0.." +
+                                            std::to_string(info.levels) + ", not " +
+                                            std::to_string(level)));
+  }
+  int first = 0, end = static_cast<int>(info.frame_count);
+  if (!args.frames.empty()) {
+    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, end);
+    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    first = range->first;
+    end = range->second;
+  }
+  MeshWriteOptions write_options;
+  write_options.ply_encoding = args.ascii ? PlyEncoding::kAscii : PlyEncoding::kBinaryLittleEndian;
+  ProgressBar bar(args.quiet);
+  const ProgressCallback progress = bar.Callback();
+  for (int frame = first; frame < end; ++frame) {
+    StatusOr<TriangleMesh> mesh = (*decoder)->DecodeFrame(frame, level);
+    if (!mesh.ok()) return ReportError(mesh.status());
+    const std::string path = pattern->Expand(frame);
+    const Status written = WriteMesh(path, *mesh, write_options);
+    if (!written.ok()) return ReportError(written);
+    ReportProgress(progress, "decoding", frame - first + 1, end - first);
+  }
+  bar.Finish();
+  if (!args.quiet) {
+    std::fprintf(stderr, "Decoded frames %d..%d of %s at level %d (%zu vertices, %zu triangles "
+                         "each) to %s\n",
+                 first, end - 1, args.file.c_str(), level, info.vertices_per_level[level],
+                 info.triangles_per_level[level], args.output.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void AddDecodeCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<DecodeArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "decode",
+      "Decode a .mvid into one mesh file per frame (binary PLY, ascii PLY or OBJ by the\n"
+      "pattern's extension). Every frame of a level has the same triangles.");
+  cmd->add_option("FILE", args->file, "The .mvid file")->required();
+  cmd->add_option("-o,--out", args->output,
+                  "Output pattern with {frame}, e.g. out/f{frame:04}.ply or out/{frame}.obj")
+      ->required();
+  cmd->add_option("--level", args->level,
+                  "Resolution level 0 (base mesh) .. L (default: the finest stored)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary");
+  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->callback([args, exit_code] { *exit_code = RunDecode(*args); });
+}
+
+}  // namespace meshvid::cli

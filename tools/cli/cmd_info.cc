@@ -1,0 +1,131 @@
+// `meshvid info`: what a .mvid holds, and with --check whether it is intact.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "codec/dec/mvid_decoder.h"
+#include "format/validate.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/terminal.h"
+
+namespace meshvid::cli {
+namespace {
+
+struct InfoArguments {
+  std::string file;
+  bool check = false;
+  bool json = false;
+};
+
+std::string Kilobytes(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f kB", bytes / 1000.0);
+  return text;
+}
+
+/// Decodes every group once (transforms and video), so a damaged stream is found.
+Status DecodeEveryGroup(MvidDecoder& decoder, const ProgressCallback& progress) {
+  const MvidInfo& info = decoder.info();
+  std::vector<float> displacements;
+  for (std::uint32_t frame = 0; frame < info.frame_count; ++frame) {
+    MESHVID_RETURN_IF_ERROR(decoder.DecodeDisplacements(frame, &displacements));
+    MESHVID_RETURN_IF_ERROR(decoder.DecodeTransforms(frame).status());
+    if (!ReportProgress(progress, "checking", frame + 1, info.frame_count)) {
+      return CancelledError("cancelled");
+    }
+  }
+  return Status::Ok();
+}
+
+int RunInfo(const InfoArguments& args) {
+  if (args.check) {
+    StatusOr<ValidationReport> report = ValidateContainerFile(args.file);
+    if (!report.ok()) return ReportError(report.status());
+    if (!args.json) std::fputs(report->ToText().c_str(), stdout);
+    if (!report->ok()) return ReportError(report->ToStatus());
+  }
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(args.file);
+  if (!decoder.ok()) return ReportError(decoder.status());
+  const MvidInfo& info = (*decoder)->info();
+  StatusOr<MvidStreamSizes> sizes = (*decoder)->MeasureStreams();
+  if (!sizes.ok()) return ReportError(sizes.status());
+  if (args.check) {
+    ProgressBar bar(args.json);
+    const Status decoded = DecodeEveryGroup(**decoder, bar.Callback());
+    bar.Finish();
+    if (!decoded.ok()) return ReportError(decoded.WithContext(args.file));
+  }
+  const double frames = std::max<double>(1, info.frame_count);
+  const double bytes_per_frame = info.file_bytes / frames;
+  const double mbits = bytes_per_frame * 8 * info.frame_rate / 1e6;
+  if (args.json) {
+    nlohmann::json j = {
+        {"file", args.file},
+        {"frames", info.frame_count},
+        {"frame_rate", info.frame_rate},
+        {"duration_s", info.frame_count / info.frame_rate},
+        {"groups", info.gof_count},
+        {"frames_per_group", info.gof_size},
+        {"levels", info.levels},
+        {"indexed", info.indexed},
+        {"codec", std::string(VideoCodecName(info.codec))},
+        {"picture", {{"width", info.picture_width}, {"height", info.picture_height}}},
+        {"base", {{"vertices", info.base_vertices}, {"triangles", info.base_triangles}}},
+        {"segments", info.segments},
+        {"bytes",
+         {{"file", info.file_bytes},
+          {"base_mesh", info.base_bytes},
+          {"motion_model", info.motion_bytes},
+          {"transforms", sizes->transform_bytes},
+          {"video", sizes->video_bytes},
+          {"per_frame", bytes_per_frame}}},
+        {"mbit_per_s", mbits},
+        {"vertices_per_level", info.vertices_per_level},
+        {"triangles_per_level", info.triangles_per_level},
+        {"checked", args.check},
+        {"metadata", nlohmann::json::parse(info.metadata_json.empty() ? "{}" : info.metadata_json,
+                                           nullptr, /*allow_exceptions=*/false)}};
+    std::printf("%s\n", j.dump(2).c_str());
+    return 0;
+  }
+  std::printf("%s: %u frames at %.3g fps (%.2f s) in %u groups of up to %u frames%s\n",
+              args.file.c_str(), info.frame_count, info.frame_rate,
+              info.frame_count / info.frame_rate, info.gof_count, info.gof_size,
+              info.indexed ? "" : " (no index: groups found by scanning)");
+  std::printf("  base mesh      %zu vertices, %zu triangles, %s (Draco)\n", info.base_vertices,
+              info.base_triangles, Kilobytes(info.base_bytes).c_str());
+  std::printf("  motion         %u segments: blend weights %s, transforms %s\n", info.segments,
+              Kilobytes(info.motion_bytes).c_str(), Kilobytes(sizes->transform_bytes).c_str());
+  std::printf("  displacements  %s 10-bit %dx%d, %s\n",
+              std::string(VideoCodecName(info.codec)).c_str(), info.picture_width,
+              info.picture_height, Kilobytes(sizes->video_bytes).c_str());
+  std::printf("  total          %s = %.0f bytes per frame = %.3f Mbit/s at %.3g fps\n",
+              Kilobytes(info.file_bytes).c_str(), bytes_per_frame, mbits, info.frame_rate);
+  std::printf("  level  vertices  triangles\n");
+  for (int level = 0; level <= info.levels; ++level) {
+    std::printf("  %5d  %8zu  %9zu\n", level, info.vertices_per_level[level],
+                info.triangles_per_level[level]);
+  }
+  if (!info.metadata_json.empty()) std::printf("  metadata       %s\n", info.metadata_json.c_str());
+  if (args.check) std::printf("  check          ok: every chunk, CRC and group decodes\n");
+  return 0;
+}
+
+}  // namespace
+
+void AddInfoCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<InfoArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "info",
+      "Show what a .mvid holds: frames, rate, groups, levels (vertices and triangles of each),\n"
+      "the bytes of every stream, bytes per frame and Mbit/s. With --check, also validate\n"
+      "every chunk and CRC and decode every group; exits 1 if anything is wrong.");
+  cmd->add_option("FILE", args->file, "The .mvid file")->required();
+  cmd->add_flag("--check", args->check, "Validate the file and decode every group");
+  cmd->add_flag("--json", args->json, "Print JSON instead of text");
+  cmd->callback([args, exit_code] { *exit_code = RunInfo(*args); });
+}
+
+}  // namespace meshvid::cli

@@ -7,76 +7,21 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
 
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/mvid_writer.h"
 #include "format/container_reader.h"
+#include "format/container_writer.h"
+#include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 
 namespace meshvid {
 namespace {
 
-/// The octahedron refined `refinements` times by midpoint splits, projected onto the unit
-/// sphere: a closed, well-shaped base mesh.
-TriangleMesh SphereMesh(int refinements) {
-  TriangleMesh mesh;
-  mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  mesh.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int r = 0; r < refinements; ++r) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
-    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-      const auto key = std::minmax(a, b);
-      auto [it, added] = midpoints.emplace(key, mesh.positions.size());
-      if (added) mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]).normalized());
-      return it->second;
-    };
-    std::vector<Triangle> finer;
-    for (const Triangle& t : mesh.triangles) {
-      const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]),
-                          ca = midpoint(t[2], t[0]);
-      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
-    }
-    mesh.triangles = std::move(finer);
-  }
-  return mesh;
-}
-
-/// Upper half in segment 0, lower half in segment 1, a blended band between.
-MotionModel TwoSegments(const TriangleMesh& base) {
-  MotionModel model;
-  model.segment_count = 2;
-  for (const auto& p : base.positions) {
-    VertexBlend blend;
-    const float w = std::clamp(0.5f + p.y() / 0.4f, 0.0f, 1.0f);  // weight of segment 0
-    if (w >= 1.0f || w <= 0.0f) {
-      blend.count = 1;
-      blend.influences[0] = {w >= 1.0f ? 0u : 1u, 1.0f};
-    } else {
-      blend.count = 2;
-      blend.influences[0] = {0, w};
-      blend.influences[1] = {1, 1.0f - w};
-    }
-    model.blends.push_back(blend);
-  }
-  return model;
-}
-
-std::vector<RigidTransform> TransformsAt(int frame) {
-  RigidTransform upper, lower;
-  upper.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(0.05f * frame, Eigen::Vector3f::UnitY()));
-  lower.translation = Eigen::Vector3f(0.01f * frame, 0, 0);
-  return {upper, lower};
-}
-
-/// The known detail: a function of where a sample sits on the unposed base, moving in time.
-float DetailAt(const Eigen::Vector3f& rest, int frame) {
-  return 0.02f * std::sin(5 * rest.x()) * std::cos(3 * rest.y() + 0.2f * frame);
-}
-
 struct Representation {
-  TriangleMesh base = SphereMesh(2);
-  MotionModel motion = TwoSegments(SphereMesh(2));
+  TriangleMesh base = testing::SphereMesh(2);
+  MotionModel motion = testing::TwoSegments(testing::SphereMesh(2));
   int frames = 12;
 };
 
@@ -84,33 +29,9 @@ struct Representation {
 std::vector<std::uint8_t> WriteRepresentation(const Representation& rep,
                                               const MvidWriterSettings& settings,
                                               MvidWriteStats* stats = nullptr) {
-  std::vector<std::uint8_t> bytes;
-  auto writer = MvidWriter::Create(
-      [&bytes](std::span<const std::uint8_t> b) {
-        bytes.insert(bytes.end(), b.begin(), b.end());
-        return Status::Ok();
-      },
-      rep.base, rep.motion, settings);
-  EXPECT_TRUE(writer.ok()) << writer.status().ToString();
-  if (!writer.ok()) return {};
-  const RegularSubdivision& lattice = (*writer)->subdivision();
-  std::vector<Eigen::Vector3f> rest_points, rest_directions;
-  const std::vector<Eigen::Vector3f> rest_normals = ComputeVertexNormals((*writer)->decoded_base());
-  EvaluateSampleFrames(lattice, lattice.levels(), (*writer)->decoded_base().positions,
-                       rest_normals, &rest_points, &rest_directions);
-  for (int first = 0; first < rep.frames; first += settings.gof_size) {
-    std::vector<std::vector<RigidTransform>> transforms;
-    std::vector<std::vector<float>> displacements;
-    for (int f = first; f < std::min(rep.frames, first + settings.gof_size); ++f) {
-      transforms.push_back(TransformsAt(f));
-      auto& field = displacements.emplace_back();
-      for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
-    }
-    EXPECT_TRUE((*writer)->WriteGroup(transforms, displacements).ok());
-  }
-  EXPECT_TRUE((*writer)->Finish().ok());
-  if (stats != nullptr) *stats = (*writer)->stats();
-  return bytes;
+  auto bytes = testing::WriteAnalyticMvid(rep.base, rep.motion, rep.frames, settings, stats);
+  EXPECT_TRUE(bytes.ok()) << bytes.status().ToString();
+  return bytes.ok() ? *bytes : std::vector<std::uint8_t>{};
 }
 
 /// What a decoder should reconstruct for frame f at `level`: the decoded base posed with the
@@ -128,7 +49,7 @@ std::vector<Eigen::Vector3f> Expected(const MvidDecoder& decoder, int frame, int
                        &directions);
   std::vector<Eigen::Vector3f> expected;
   for (std::size_t s = 0; s < origins.size(); ++s) {
-    expected.push_back(origins[s] + DetailAt(rest[s], frame) * directions[s]);
+    expected.push_back(origins[s] + testing::DetailAt(rest[s], frame) * directions[s]);
   }
   return expected;
 }
@@ -268,6 +189,36 @@ TEST(MvidRoundTripTest, TruncatedFilesKeepTheirCompleteGroups) {
   }
 }
 
+TEST(MvidRoundTripTest, StreamsDecodeFrontToBack) {
+  Representation rep;
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kHevc;
+  settings.levels = 2;
+  settings.gof_size = 5;
+  settings.frame_count = 12;
+  const std::vector<std::uint8_t> bytes = WriteRepresentation(rep, settings);
+  auto whole = MvidDecoder::OpenMemory(bytes);
+  ASSERT_TRUE(whole.ok());
+  std::istringstream in(std::string(bytes.begin(), bytes.end()));
+  auto stream = MvidDecoder::OpenStream(in);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  EXPECT_EQ((*stream)->info().frame_count, 12u);
+  for (std::uint32_t f : {0u, 1u, 4u, 4u, 7u, 11u}) {
+    auto a = (*stream)->DecodeFrame(f, 2);
+    auto b = (*whole)->DecodeFrame(f, 2);
+    ASSERT_TRUE(a.ok()) << a.status().ToString();
+    EXPECT_EQ(a->positions, b->positions) << f;
+  }
+  EXPECT_EQ((*stream)->DecodeFrame(3, 2).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ((*stream)->MeasureStreams().status().code(), StatusCode::kUnsupported);
+  // A stream cut inside the third group still gives the first two.
+  std::istringstream cut(std::string(bytes.begin(), bytes.begin() + bytes.size() * 5 / 6));
+  auto partial = MvidDecoder::OpenStream(cut);
+  ASSERT_TRUE(partial.ok());
+  EXPECT_TRUE((*partial)->DecodeFrame(9, 1).ok());
+  EXPECT_FALSE((*partial)->DecodeFrame(11, 1).ok());
+}
+
 TEST(MvidRoundTripTest, WriterRejectsInconsistentInput) {
   Representation rep;
   MvidWriterSettings settings;
@@ -277,13 +228,13 @@ TEST(MvidRoundTripTest, WriterRejectsInconsistentInput) {
                                    rep.base, rep.motion, settings);
   ASSERT_TRUE(writer.ok());
   const std::size_t samples = (*writer)->subdivision().samples().size();
-  EXPECT_EQ((*writer)->WriteGroup({TransformsAt(0)}, {std::vector<float>(samples - 1)}).code(),
+  EXPECT_EQ((*writer)->WriteGroup({testing::TransformsAt(0)}, {std::vector<float>(samples - 1)}).code(),
             StatusCode::kInvalidArgument);
   EXPECT_EQ((*writer)->WriteGroup({{RigidTransform{}}}, {std::vector<float>(samples)}).code(),
             StatusCode::kInvalidArgument);
   std::vector<float> field(samples, 0.0f);
   field[3] = std::nanf("");
-  EXPECT_EQ((*writer)->WriteGroup({TransformsAt(0)}, {field}).code(),
+  EXPECT_EQ((*writer)->WriteGroup({testing::TransformsAt(0)}, {field}).code(),
             StatusCode::kInvalidArgument);
   MotionModel wrong = rep.motion;
   wrong.blends.pop_back();
@@ -292,12 +243,67 @@ TEST(MvidRoundTripTest, WriterRejectsInconsistentInput) {
                    .ok());
 }
 
+/// Every readable frame of `bytes` at every level; returns the first error.
+Status DecodeEverything(std::vector<std::uint8_t> bytes) {
+  MESHVID_ASSIGN_OR_RETURN(auto decoder, MvidDecoder::OpenMemory(std::move(bytes)));
+  for (std::uint32_t f = 0; f < decoder->info().frame_count; ++f) {
+    for (int level = 0; level <= decoder->info().levels; ++level) {
+      MESHVID_ASSIGN_OR_RETURN(const TriangleMesh mesh, decoder->DecodeFrame(f, level));
+      MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "decoded"));
+    }
+  }
+  return Status::Ok();
+}
+
+TEST(MvidBadInputTest, FlippedBitsAreErrorsNeverCrashes) {
+  const std::string golden = testing::ReadFile(std::string(MESHVID_GOLDEN_DIR) + "/sphere.v1.mvid");
+  const std::vector<std::uint8_t> bytes(golden.begin(), golden.end());
+  ASSERT_TRUE(DecodeEverything(bytes).ok());
+  int failures = 0, flips = 0;
+  for (std::size_t bit = 0; bit < bytes.size() * 8; bit += 61) {
+    std::vector<std::uint8_t> flipped = bytes;
+    flipped[bit / 8] ^= static_cast<std::uint8_t>(1u << (bit % 8));
+    ++flips;
+    // CRCs catch a flip in any chunk; a flip in the index or trailer makes the reader fall
+    // back to scanning, which still decodes everything correctly.
+    if (!DecodeEverything(std::move(flipped)).ok()) ++failures;
+  }
+  EXPECT_GT(failures, flips * 9 / 10);
+}
+
+TEST(MvidBadInputTest, AVideoStreamThatDoesNotDecodeIsAnError) {
+  auto reader = ContainerReader::OpenFile(std::string(MESHVID_GOLDEN_DIR) + "/sphere.v1.mvid");
+  ASSERT_TRUE(reader.ok());
+  // Re-wrap the file with garbage video packets in its second group (CRCs stay valid).
+  std::vector<std::uint8_t> out;
+  ContainerWriter writer([&out](std::span<const std::uint8_t> b) {
+    out.insert(out.end(), b.begin(), b.end());
+    return Status::Ok();
+  });
+  ASSERT_TRUE(writer.Begin(reader->header()).ok());
+  ASSERT_TRUE(writer.WriteBase(*reader->ReadBase()).ok());
+  ASSERT_TRUE(writer.WriteMotion(*reader->ReadMotion()).ok());
+  for (std::size_t k = 0; k < reader->gof_count(); ++k) {
+    GroupOfFrames gof = *reader->ReadGof(k);
+    if (k == 1) {
+      for (auto& packet : gof.packets[0]) packet.assign(packet.size(), 0x5A);
+    }
+    ASSERT_TRUE(writer.WriteGof(gof).ok());
+  }
+  ASSERT_TRUE(writer.Finish().ok());
+  auto decoder = MvidDecoder::OpenMemory(out);
+  ASSERT_TRUE(decoder.ok());
+  EXPECT_TRUE((*decoder)->DecodeFrame(0, 2).ok());  // the first group is intact
+  const auto broken = (*decoder)->DecodeFrame(5, 2);
+  EXPECT_EQ(broken.status().code(), StatusCode::kCorrupt) << broken.status().ToString();
+}
+
 // tests/golden/sphere.v1.mvid: written by this test when MESHVID_WRITE_GOLDEN names a folder,
 // decoded by it always. Never delete a golden file when the format moves on.
 TEST(MvidGoldenTest, Version1FileStillDecodes) {
   Representation rep;
-  rep.base = SphereMesh(1);
-  rep.motion = TwoSegments(rep.base);
+  rep.base = testing::SphereMesh(1);
+  rep.motion = testing::TwoSegments(rep.base);
   rep.frames = 6;
   MvidWriterSettings settings;
   settings.codec = VideoCodec::kFfv1;

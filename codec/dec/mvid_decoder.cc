@@ -6,6 +6,7 @@
 #include "codec/dec/gof_side_info.h"
 #include "codec/dec/motion_decoder.h"
 #include "codec/dec/video_decoder.h"
+#include "format/stream_reader.h"
 
 namespace meshvid {
 
@@ -26,26 +27,118 @@ StatusOr<VideoCodec> VideoCodecFromTag(const std::string& tag) {
   return UnsupportedError("video codec '" + tag + "' is not supported");
 }
 
+/// Where the decoder gets its groups of frames from.
+class MvidDecoder::GroupSource {
+ public:
+  virtual ~GroupSource() = default;
+  /// The group holding `frame` (kInvalidArgument if no readable group holds it).
+  virtual StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) = 0;
+  /// The container reader for random access, or null for a stream.
+  virtual ContainerReader* reader() { return nullptr; }
+};
+
+/// Groups of a seekable file or memory buffer, found through the index (or a scan).
+class MvidDecoder::IndexedGroups : public GroupSource {
+ public:
+  explicit IndexedGroups(ContainerReader reader) : reader_(std::move(reader)) {}
+  StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) override {
+    MESHVID_ASSIGN_OR_RETURN(const std::size_t k, reader_.FindGof(frame));
+    return reader_.ReadGof(k);
+  }
+  ContainerReader* reader() override { return &reader_; }
+
+ private:
+  ContainerReader reader_;
+};
+
+/// Groups of a stream, read front to back.
+class MvidDecoder::StreamedGroups : public GroupSource {
+ public:
+  StreamedGroups(std::unique_ptr<StreamReader> stream, std::string name)
+      : stream_(std::move(stream)), name_(std::move(name)) {}
+  StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) override {
+    if (frame < last_.first_frame) {
+      return InvalidArgumentError(name_ + ": a stream decodes forward only; frame " +
+                                  std::to_string(frame) + " has passed");
+    }
+    while (frame >= next_frame_) {
+      MESHVID_ASSIGN_OR_RETURN(StreamItem item, stream_->Next());
+      if (item.kind == StreamItem::Kind::kEnd || item.kind == StreamItem::Kind::kIndex) {
+        return InvalidArgumentError(name_ + ": the stream ends after frame " +
+                                    std::to_string(next_frame_) + " (exclusive)");
+      }
+      if (item.kind != StreamItem::Kind::kGof) continue;
+      last_ = std::move(item.gof);
+      next_frame_ = last_.first_frame + last_.frame_count;
+    }
+    return last_;
+  }
+
+ private:
+  std::unique_ptr<StreamReader> stream_;
+  std::string name_;
+  GroupOfFrames last_;
+  std::uint32_t next_frame_ = 0;
+};
+
 StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenFile(const std::string& path,
                                                              const MvidDecoderOptions& options) {
   MESHVID_ASSIGN_OR_RETURN(ContainerReader reader, ContainerReader::OpenFile(path));
-  return Open(std::move(reader), options);
+  return OpenIndexed(std::move(reader), options);
 }
 
 StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenMemory(
     std::vector<std::uint8_t> bytes, const MvidDecoderOptions& options) {
   MESHVID_ASSIGN_OR_RETURN(ContainerReader reader, ContainerReader::OpenMemory(std::move(bytes)));
-  return Open(std::move(reader), options);
+  return OpenIndexed(std::move(reader), options);
 }
 
-StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::Open(ContainerReader reader,
-                                                         const MvidDecoderOptions& options) {
+StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenIndexed(
+    ContainerReader reader, const MvidDecoderOptions& options) {
   std::unique_ptr<MvidDecoder> decoder(new MvidDecoder());
   decoder->options_ = options;
-  decoder->reader_ = std::make_unique<ContainerReader>(std::move(reader));
-  ContainerReader& r = *decoder->reader_;
-  const ContainerHeader& header = r.header();
-  const std::string& name = r.source().name();
+  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> base_bytes, reader.ReadBase());
+  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes, reader.ReadMotion());
+  MESHVID_RETURN_IF_ERROR(
+      decoder->Initialize(reader.header(), base_bytes, motion_bytes, reader.source().name()));
+  MvidInfo& info = decoder->info_;
+  info.frame_count = static_cast<std::uint32_t>(reader.frame_count());
+  info.gof_count = static_cast<std::uint32_t>(reader.gof_count());
+  info.file_bytes = reader.source().size();
+  info.indexed = reader.used_index();
+  decoder->groups_ = std::make_unique<IndexedGroups>(std::move(reader));
+  return decoder;
+}
+
+StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenStream(std::istream& in,
+                                                               const MvidDecoderOptions& options,
+                                                               const std::string& name) {
+  std::unique_ptr<MvidDecoder> decoder(new MvidDecoder());
+  decoder->options_ = options;
+  auto stream = std::make_unique<StreamReader>(in, name);
+  MESHVID_ASSIGN_OR_RETURN(const ContainerHeader header, stream->ReadHeader());
+  // BASE and MOTN come before the first group (container chunk order rules).
+  std::vector<std::uint8_t> base_bytes, motion_bytes;
+  while (base_bytes.empty() || motion_bytes.empty()) {
+    MESHVID_ASSIGN_OR_RETURN(StreamItem item, stream->Next());
+    if (item.kind == StreamItem::Kind::kBase) {
+      base_bytes = std::move(item.bytes);
+    } else if (item.kind == StreamItem::Kind::kMotion) {
+      motion_bytes = std::move(item.bytes);
+    } else {
+      return CorruptError(name + ": the base mesh and motion must precede every group");
+    }
+  }
+  MESHVID_RETURN_IF_ERROR(decoder->Initialize(header, base_bytes, motion_bytes, name));
+  decoder->info_.frame_count = header.frame_count;
+  decoder->groups_ = std::make_unique<StreamedGroups>(std::move(stream), name);
+  return decoder;
+}
+
+Status MvidDecoder::Initialize(const ContainerHeader& header,
+                               const std::vector<std::uint8_t>& base_bytes,
+                               const std::vector<std::uint8_t>& motion_bytes,
+                               const std::string& name) {
   if (header.streams.size() != 1 || header.streams[0].name != "displacement" ||
       header.streams[0].bit_depth != 10) {
     return UnsupportedError(name + ": expected one 10-bit displacement video stream");
@@ -53,47 +146,38 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::Open(ContainerReader reader,
   if (header.level_count > static_cast<std::uint32_t>(RegularSubdivision::kMaxLevels)) {
     return CorruptError(name + ": " + std::to_string(header.level_count) + " levels");
   }
-  MvidInfo& info = decoder->info_;
+  MvidInfo& info = info_;
   MESHVID_ASSIGN_OR_RETURN(info.codec, VideoCodecFromTag(header.streams[0].codec));
   info.frame_rate = double(header.frame_rate_numerator) / header.frame_rate_denominator;
-  info.frame_count = static_cast<std::uint32_t>(r.frame_count());
   info.gof_size = header.gof_size;
-  info.gof_count = static_cast<std::uint32_t>(r.gof_count());
   info.levels = static_cast<int>(header.level_count);
   info.picture_width = static_cast<int>(header.streams[0].width);
   info.picture_height = static_cast<int>(header.streams[0].height);
   info.metadata_json = header.metadata_json;
-  info.file_bytes = r.source().size();
-  info.indexed = r.used_index();
-
-  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> base_bytes, r.ReadBase());
-  MESHVID_ASSIGN_OR_RETURN(decoder->base_, DecodeBaseMesh(base_bytes));
-  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes, r.ReadMotion());
+  MESHVID_ASSIGN_OR_RETURN(base_, DecodeBaseMesh(base_bytes));
   MESHVID_ASSIGN_OR_RETURN(DecodedMotion motion,
-                           DecodeMotionModel(motion_bytes, decoder->base_.vertex_count()));
-  decoder->motion_ = std::move(motion.model);
-  decoder->quantization_ = motion.quantization;
-  MESHVID_ASSIGN_OR_RETURN(decoder->subdivision_,
-                           RegularSubdivision::Create(decoder->base_, info.levels));
-  decoder->layout_ = DisplacementLayout::ForSubdivision(decoder->subdivision_);
-  if (decoder->layout_.width() != info.picture_width ||
-      decoder->layout_.height() != info.picture_height) {
+                           DecodeMotionModel(motion_bytes, base_.vertex_count()));
+  motion_ = std::move(motion.model);
+  quantization_ = motion.quantization;
+  MESHVID_ASSIGN_OR_RETURN(subdivision_, RegularSubdivision::Create(base_, info.levels));
+  layout_ = DisplacementLayout::ForSubdivision(subdivision_);
+  if (layout_.width() != info.picture_width || layout_.height() != info.picture_height) {
     return CorruptError(name + ": displacement picture is " + std::to_string(info.picture_width) +
                         "x" + std::to_string(info.picture_height) + ", the layout of this base " +
-                        "mesh and level count needs " + std::to_string(decoder->layout_.width()) +
-                        "x" + std::to_string(decoder->layout_.height()));
+                        "mesh and level count needs " + std::to_string(layout_.width()) + "x" +
+                        std::to_string(layout_.height()));
   }
-  info.base_vertices = decoder->base_.vertex_count();
-  info.base_triangles = decoder->base_.triangle_count();
-  info.segments = decoder->motion_.segment_count;
+  info.base_vertices = base_.vertex_count();
+  info.base_triangles = base_.triangle_count();
+  info.segments = motion_.segment_count;
   info.base_bytes = base_bytes.size();
   info.motion_bytes = motion_bytes.size();
   for (int level = 0; level <= info.levels; ++level) {
-    info.vertices_per_level.push_back(decoder->subdivision_.sample_count(level));
-    info.triangles_per_level.push_back(decoder->base_.triangle_count() << (2 * level));
+    info.vertices_per_level.push_back(subdivision_.sample_count(level));
+    info.triangles_per_level.push_back(base_.triangle_count() << (2 * level));
   }
-  decoder->triangles_.resize(info.levels + 1);
-  return decoder;
+  triangles_.resize(info.levels + 1);
+  return Status::Ok();
 }
 
 Status MvidDecoder::CheckLevel(int level) const {
@@ -111,14 +195,19 @@ StatusOr<const std::vector<Triangle>*> MvidDecoder::Triangles(int level) {
 }
 
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
-  if (frame >= info_.frame_count) {
+  // A stream whose header did not know the frame count learns it at its end.
+  const bool count_known = groups_->reader() != nullptr || info_.frame_count > 0;
+  if (count_known && frame >= info_.frame_count) {
     return InvalidArgumentError("frame " + std::to_string(frame) + " is not in 0.." +
                                 std::to_string(info_.frame_count) + " (exclusive)");
   }
-  MESHVID_ASSIGN_OR_RETURN(const std::size_t k, reader_->FindGof(frame));
-  if (group_ && group_->index == k) return Status::Ok();
-  MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, reader_->ReadGof(k));
-  const std::string context = reader_->source().name() + ": group " + std::to_string(k);
+  if (group_ && frame >= group_->first_frame &&
+      frame < group_->first_frame + group_->pictures.size()) {
+    return Status::Ok();
+  }
+  MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, groups_->ReadGroupHolding(frame));
+  const std::size_t k = gof.gof_index;
+  const std::string context = "group " + std::to_string(k);
   auto group = std::make_unique<Group>();
   group->index = k;
   group->first_frame = gof.first_frame;
@@ -146,9 +235,11 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
 }
 
 StatusOr<MvidStreamSizes> MvidDecoder::MeasureStreams() {
+  ContainerReader* reader = groups_->reader();
+  if (reader == nullptr) return UnsupportedError("stream sizes need a file or memory buffer");
   MvidStreamSizes sizes;
-  for (std::size_t k = 0; k < reader_->gof_count(); ++k) {
-    MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, reader_->ReadGof(k));
+  for (std::size_t k = 0; k < reader->gof_count(); ++k) {
+    MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, reader->ReadGof(k));
     sizes.transform_bytes += gof.transforms.size();
     for (const auto& packet : gof.packets[0]) sizes.video_bytes += packet.size();
   }

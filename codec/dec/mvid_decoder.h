@@ -4,6 +4,7 @@
 #define MESHVID_CODEC_DEC_MVID_DECODER_H_
 
 #include <cstdint>
+#include <istream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,12 @@ class MvidDecoder {
                                                          const MvidDecoderOptions& options = {});
   static StatusOr<std::unique_ptr<MvidDecoder>> OpenMemory(std::vector<std::uint8_t> bytes,
                                                            const MvidDecoderOptions& options = {});
+  /// Reads a stream front to back (a pipe, a socket): frames must then be asked for in
+  /// non-decreasing order, and `in` must outlive the decoder. info().frame_count is the
+  /// header's (0 if the writer did not know it); file and stream sizes are not known.
+  static StatusOr<std::unique_ptr<MvidDecoder>> OpenStream(std::istream& in,
+                                                           const MvidDecoderOptions& options = {},
+                                                           const std::string& name = "<stream>");
 
   const MvidInfo& info() const { return info_; }
   /// The base mesh as decoded (level 0 before motion).
@@ -75,21 +82,29 @@ class MvidDecoder {
   StatusOr<TriangleMesh> DecodeFrame(std::uint32_t frame, int level);
   /// The de-quantised displacement field of a frame (all samples, finest level).
   Status DecodeDisplacements(std::uint32_t frame, std::vector<float>* displacements);
-  /// Reads every group once to total the bytes of each per-group stream.
+  /// Reads every group once to total the bytes of each per-group stream (files and memory
+  /// buffers only).
   StatusOr<MvidStreamSizes> MeasureStreams();
   /// The segment transforms of a frame.
   StatusOr<std::vector<RigidTransform>> DecodeTransforms(std::uint32_t frame);
 
  private:
+  class GroupSource;
+  class IndexedGroups;
+  class StreamedGroups;
+  struct Group;
+
   MvidDecoder() = default;
-  static StatusOr<std::unique_ptr<MvidDecoder>> Open(ContainerReader reader,
-                                                     const MvidDecoderOptions& options);
+  /// Sets up everything from the header, BASE and MOTN payloads; fills info_ but the sizes.
+  Status Initialize(const ContainerHeader& header, const std::vector<std::uint8_t>& base_bytes,
+                    const std::vector<std::uint8_t>& motion_bytes, const std::string& name);
+  static StatusOr<std::unique_ptr<MvidDecoder>> OpenIndexed(ContainerReader reader,
+                                                            const MvidDecoderOptions& options);
   Status LoadGroupOf(std::uint32_t frame);
   Status CheckLevel(int level) const;
 
-  struct Group;
   MvidDecoderOptions options_;
-  std::unique_ptr<ContainerReader> reader_;
+  std::unique_ptr<GroupSource> groups_;
   MvidInfo info_;
   TriangleMesh base_;
   MotionModel motion_;

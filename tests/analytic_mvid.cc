@@ -1,0 +1,125 @@
+#include "tests/analytic_mvid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "codec/common/subdivision.h"
+
+namespace meshvid::testing {
+
+TriangleMesh SphereMesh(int refinements) {
+  TriangleMesh mesh;
+  mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  mesh.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int r = 0; r < refinements; ++r) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto [it, added] = midpoints.emplace(key, mesh.positions.size());
+      if (added) mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]).normalized());
+      return it->second;
+    };
+    std::vector<Triangle> finer;
+    for (const Triangle& t : mesh.triangles) {
+      const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]),
+                          ca = midpoint(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    mesh.triangles = std::move(finer);
+  }
+  return mesh;
+}
+
+TriangleMesh LatLongSphere(int rings, int segments) {
+  TriangleMesh mesh;
+  mesh.positions.emplace_back(0.0f, 1.0f, 0.0f);
+  for (int r = 1; r <= rings; ++r) {
+    const double theta = M_PI * r / (rings + 1);
+    for (int s = 0; s < segments; ++s) {
+      const double phi = 2 * M_PI * s / segments;
+      mesh.positions.emplace_back(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                  -std::sin(theta) * std::sin(phi));
+    }
+  }
+  mesh.positions.emplace_back(0.0f, -1.0f, 0.0f);
+  const auto at = [segments](int r, int s) {
+    return static_cast<std::uint32_t>(1 + (r - 1) * segments + (s % segments));
+  };
+  const auto south = static_cast<std::uint32_t>(mesh.positions.size() - 1);
+  for (int s = 0; s < segments; ++s) {
+    mesh.triangles.emplace_back(0, at(1, s), at(1, s + 1));
+    for (int r = 1; r < rings; ++r) {
+      mesh.triangles.emplace_back(at(r, s), at(r + 1, s), at(r + 1, s + 1));
+      mesh.triangles.emplace_back(at(r, s), at(r + 1, s + 1), at(r, s + 1));
+    }
+    mesh.triangles.emplace_back(at(rings, s), south, at(rings, s + 1));
+  }
+  return mesh;
+}
+
+MotionModel TwoSegments(const TriangleMesh& base) {
+  MotionModel model;
+  model.segment_count = 2;
+  for (const auto& p : base.positions) {
+    VertexBlend blend;
+    const float w = std::clamp(0.5f + p.y() / 0.4f, 0.0f, 1.0f);  // weight of segment 0
+    if (w >= 1.0f || w <= 0.0f) {
+      blend.count = 1;
+      blend.influences[0] = {w >= 1.0f ? 0u : 1u, 1.0f};
+    } else {
+      blend.count = 2;
+      blend.influences[0] = {0, w};
+      blend.influences[1] = {1, 1.0f - w};
+    }
+    model.blends.push_back(blend);
+  }
+  return model;
+}
+
+std::vector<RigidTransform> TransformsAt(int frame) {
+  RigidTransform upper, lower;
+  upper.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(0.05f * frame, Eigen::Vector3f::UnitY()));
+  lower.translation = Eigen::Vector3f(0.01f * frame, 0, 0);
+  return {upper, lower};
+}
+
+float DetailAt(const Eigen::Vector3f& rest, int frame) {
+  return 0.02f * std::sin(5 * rest.x()) * std::cos(3 * rest.y() + 0.2f * frame);
+}
+
+StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
+                                                      const MotionModel& motion, int frames,
+                                                      const MvidWriterSettings& settings,
+                                                      MvidWriteStats* stats) {
+  std::vector<std::uint8_t> bytes;
+  MESHVID_ASSIGN_OR_RETURN(auto writer, MvidWriter::Create(
+                                            [&bytes](std::span<const std::uint8_t> b) {
+                                              bytes.insert(bytes.end(), b.begin(), b.end());
+                                              return Status::Ok();
+                                            },
+                                            base, motion, settings));
+  // The detail is a function of where each sample sits on the decoded, unposed base.
+  const RegularSubdivision& lattice = writer->subdivision();
+  std::vector<Eigen::Vector3f> rest_points, rest_directions;
+  EvaluateSampleFrames(lattice, lattice.levels(), writer->decoded_base().positions,
+                       ComputeVertexNormals(writer->decoded_base()), &rest_points,
+                       &rest_directions);
+  for (int first = 0; first < frames; first += settings.gof_size) {
+    std::vector<std::vector<RigidTransform>> transforms;
+    std::vector<std::vector<float>> displacements;
+    for (int f = first; f < std::min(frames, first + settings.gof_size); ++f) {
+      transforms.push_back(TransformsAt(f));
+      auto& field = displacements.emplace_back();
+      for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
+    }
+    MESHVID_RETURN_IF_ERROR(writer->WriteGroup(transforms, displacements));
+  }
+  MESHVID_RETURN_IF_ERROR(writer->Finish());
+  if (stats != nullptr) *stats = writer->stats();
+  return bytes;
+}
+
+}  // namespace meshvid::testing

@@ -1,0 +1,41 @@
+// An analytic .mvid representation shared by the codec tests and the decode benchmark: a
+// sphere-like base mesh in two blended segments, known transforms and a known detail field.
+#ifndef MESHVID_TESTS_ANALYTIC_MVID_H_
+#define MESHVID_TESTS_ANALYTIC_MVID_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "codec/common/mesh.h"
+#include "codec/common/motion.h"
+#include "codec/enc/mvid_writer.h"
+#include "format/status.h"
+
+namespace meshvid::testing {
+
+/// The octahedron refined `refinements` times by midpoint splits, projected onto the unit
+/// sphere: 4^r * 4 + 2 vertices (18, 66, 258, 1026, 4098, ...) and 8 * 4^r triangles.
+TriangleMesh SphereMesh(int refinements);
+
+/// A unit sphere of `rings` latitude rings (poles excluded) x `segments` longitudes, plus
+/// the two poles: rings * segments + 2 vertices, 2 * rings * segments triangles.
+TriangleMesh LatLongSphere(int rings, int segments);
+
+/// Upper half (y > 0.2) in segment 0, lower half (y < -0.2) in segment 1, blended between.
+MotionModel TwoSegments(const TriangleMesh& base);
+
+/// Frame f: segment 0 turns 0.05 f rad about y, segment 1 moves 0.01 f along x.
+std::vector<RigidTransform> TransformsAt(int frame);
+
+/// The detail at a point of the unposed base, in [-0.02, 0.02], changing with time.
+float DetailAt(const Eigen::Vector3f& rest, int frame);
+
+/// Writes `frames` frames of this representation with `settings` to memory.
+StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
+                                                      const MotionModel& motion, int frames,
+                                                      const MvidWriterSettings& settings,
+                                                      MvidWriteStats* stats = nullptr);
+
+}  // namespace meshvid::testing
+
+#endif  // MESHVID_TESTS_ANALYTIC_MVID_H_

@@ -7,25 +7,16 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "codec/common/counter_random.h"
+
 namespace meshvid {
-namespace {
-
-std::uint64_t SplitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
 
 std::uint64_t MixSeed(std::uint64_t seed, std::uint64_t value) {
   return SplitMix64(SplitMix64(seed) ^ (value * 0xD1B54A32D192ED03ull));
 }
 
 double UniformHash(std::uint64_t seed, std::uint64_t index, std::uint64_t stream) {
-  const std::uint64_t bits = SplitMix64(MixSeed(seed, stream) ^ SplitMix64(index));
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;  // 53 random bits in [0, 1)
+  return UniformClosedOpen(SplitMix64(MixSeed(seed, stream) ^ SplitMix64(index)));
 }
 
 StatusOr<SurfaceSamples> SampleSurface(const TriangleMesh& mesh, std::size_t count,

@@ -9,24 +9,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "codec/common/counter_random.h"
+
 namespace meshvid {
-namespace {
-
-/// SplitMix64's finaliser: a strong 64-bit mix, the basis of the counter-based generator.
-std::uint64_t Mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-/// Uniform in (0, 1) from 64 random bits.
-double Uniform(std::uint64_t bits) {
-  return (static_cast<double>(bits >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-}
-
-}  // namespace
-
 Status ValidateSensorOptions(const SensorOptions& options) {
   if (!(options.noise_sigma >= 0) || !std::isfinite(options.noise_sigma)) {
     return InvalidArgumentError("noise sigma must be finite and >= 0 (got " +
@@ -61,7 +46,7 @@ RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& cam
   const Eigen::Vector3d origin = camera.world_from_camera.translation();
   const double min_cos = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);
   const std::uint64_t view_key =
-      Mix(Mix(Mix(options.seed) ^ static_cast<std::uint64_t>(frame)) ^
+      SplitMix64(SplitMix64(SplitMix64(options.seed) ^ static_cast<std::uint64_t>(frame)) ^
           static_cast<std::uint64_t>(view));
   std::atomic<long> hits{0}, kept{0};
 
@@ -75,14 +60,14 @@ RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& cam
         ++local_hits;
         // Grazing angles: tiny tolerance so an angle of exactly max_angle_deg is kept.
         if (image.cos_incidence[pixel] < min_cos - 1e-7) continue;
-        const std::uint64_t key = Mix(view_key ^ pixel);
-        if (options.dropout > 0 && Uniform(Mix(key + 1)) < options.dropout) continue;
+        const std::uint64_t key = SplitMix64(view_key ^ pixel);
+        if (options.dropout > 0 && UniformOpen(SplitMix64(key + 1)) < options.dropout) continue;
         const Eigen::Vector3d ray = k.RayThrough(u, v);  // camera frame, z = 1
         double depth = hit_depth;
         if (options.noise_sigma > 0) {
           // Box-Muller: one standard normal draw, applied along the ray.
-          const double gaussian = std::sqrt(-2.0 * std::log(Uniform(Mix(key + 2)))) *
-                                  std::cos(2.0 * std::numbers::pi * Uniform(Mix(key + 3)));
+          const double gaussian = std::sqrt(-2.0 * std::log(UniformOpen(SplitMix64(key + 2)))) *
+                                  std::cos(2.0 * std::numbers::pi * UniformOpen(SplitMix64(key + 3)));
           depth += options.noise_sigma * gaussian / ray.norm();
         }
         if (!(depth > 0)) continue;

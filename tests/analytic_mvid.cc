@@ -122,4 +122,52 @@ StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
   return bytes;
 }
 
+namespace {
+
+/// The exact positions of frame f at `level`.
+std::vector<Eigen::Vector3f> ExactPositions(const MvidDecoder& decoder, int frame, int level,
+                                            const std::vector<RigidTransform>& transforms,
+                                            const RegularSubdivision& lattice) {
+  const TriangleMesh& base = decoder.base_mesh();
+  std::vector<Eigen::Vector3f> rest, directions, posed, origins;
+  EvaluateSampleFrames(lattice, level, base.positions, ComputeVertexNormals(base), &rest,
+                       &directions);
+  PoseVertices(decoder.motion(), transforms, base.positions, &posed);
+  const TriangleMesh posed_mesh{posed, base.triangles, {}};
+  EvaluateSampleFrames(lattice, level, posed, ComputeVertexNormals(posed_mesh), &origins,
+                       &directions);
+  std::vector<Eigen::Vector3f> exact;
+  for (std::size_t s = 0; s < origins.size(); ++s) {
+    exact.push_back(origins[s] + DetailAt(rest[s], frame) * directions[s]);
+  }
+  return exact;
+}
+
+}  // namespace
+
+StatusOr<ReconstructionError> MeasureReconstructionError(MvidDecoder& decoder, int level,
+                                                         int frames) {
+  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
+                           RegularSubdivision::Create(decoder.base_mesh(), decoder.info().levels));
+  ReconstructionError error;
+  double sum_squares = 0;
+  std::size_t count = 0;
+  std::vector<Eigen::Vector3f> positions;
+  for (int f = 0; f < frames; ++f) {
+    MESHVID_RETURN_IF_ERROR(decoder.DecodePositions(f, level, &positions));
+    MESHVID_ASSIGN_OR_RETURN(const std::vector<RigidTransform> transforms,
+                             decoder.DecodeTransforms(f));
+    const auto exact = ExactPositions(decoder, f, level, transforms, lattice);
+    if (exact.size() != positions.size()) return InternalError("sample counts differ");
+    for (std::size_t s = 0; s < positions.size(); ++s) {
+      const float e = (positions[s] - exact[s]).norm();
+      error.max = std::max(error.max, e);
+      sum_squares += double(e) * e;
+      ++count;
+    }
+  }
+  error.rms = static_cast<float>(std::sqrt(sum_squares / std::max<std::size_t>(count, 1)));
+  return error;
+}
+
 }  // namespace meshvid::testing

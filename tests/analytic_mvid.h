@@ -8,6 +8,7 @@
 
 #include "codec/common/mesh.h"
 #include "codec/common/motion.h"
+#include "codec/dec/mvid_decoder.h"
 #include "codec/enc/mvid_writer.h"
 #include "format/status.h"
 
@@ -35,6 +36,17 @@ StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
                                                       const MotionModel& motion, int frames,
                                                       const MvidWriterSettings& settings,
                                                       MvidWriteStats* stats = nullptr);
+
+/// How far a decoder's reconstruction is from the exact one (the decoded base posed with the
+/// decoded transforms, displaced by the exact DetailAt), over every sample of every frame.
+struct ReconstructionError {
+  float max = 0;
+  float rms = 0;
+};
+
+/// Decodes `frames` frames at `level` and compares them with the exact reconstruction.
+StatusOr<ReconstructionError> MeasureReconstructionError(MvidDecoder& decoder, int level,
+                                                         int frames);
 
 }  // namespace meshvid::testing
 

@@ -34,58 +34,26 @@ std::vector<std::uint8_t> WriteRepresentation(const Representation& rep,
   return bytes.ok() ? *bytes : std::vector<std::uint8_t>{};
 }
 
-/// What a decoder should reconstruct for frame f at `level`: the decoded base posed with the
-/// de-quantised transforms, displaced by the exact detail.
-std::vector<Eigen::Vector3f> Expected(const MvidDecoder& decoder, int frame, int level,
-                                      const std::vector<RigidTransform>& transforms) {
-  const TriangleMesh& base = decoder.base_mesh();
-  auto lattice = RegularSubdivision::Create(base, decoder.info().levels);
-  std::vector<Eigen::Vector3f> rest, directions, posed, origins;
-  EvaluateSampleFrames(*lattice, level, base.positions, ComputeVertexNormals(base), &rest,
-                       &directions);
-  PoseVertices(decoder.motion(), transforms, base.positions, &posed);
-  TriangleMesh posed_mesh{posed, base.triangles, {}};
-  EvaluateSampleFrames(*lattice, level, posed, ComputeVertexNormals(posed_mesh), &origins,
-                       &directions);
-  std::vector<Eigen::Vector3f> expected;
-  for (std::size_t s = 0; s < origins.size(); ++s) {
-    expected.push_back(origins[s] + testing::DetailAt(rest[s], frame) * directions[s]);
-  }
-  return expected;
-}
-
 /// Largest distance between decoded and expected positions over all frames at `level`;
 /// `rms` (if given) receives the root mean square distance.
 float MaxError(MvidDecoder& decoder, int level, int frames, float* rms = nullptr) {
-  float worst = 0;
-  double sum_squares = 0;
-  std::size_t count = 0;
-  for (int f = 0; f < frames; ++f) {
-    std::vector<Eigen::Vector3f> positions;
-    const Status decoded = decoder.DecodePositions(f, level, &positions);
-    EXPECT_TRUE(decoded.ok()) << decoded.ToString();
-    auto transforms = decoder.DecodeTransforms(f);
-    if (!decoded.ok() || !transforms.ok()) return std::numeric_limits<float>::infinity();
-    const auto expected = Expected(decoder, f, level, *transforms);
-    EXPECT_EQ(positions.size(), expected.size());
-    for (std::size_t s = 0; s < positions.size(); ++s) {
-      const float error = (positions[s] - expected[s]).norm();
-      worst = std::max(worst, error);
-      sum_squares += double(error) * error;
-      ++count;
-    }
-  }
-  if (rms != nullptr) *rms = static_cast<float>(std::sqrt(sum_squares / std::max<std::size_t>(count, 1)));
-  return worst;
+  const auto error = testing::MeasureReconstructionError(decoder, level, frames);
+  EXPECT_TRUE(error.ok()) << error.status().ToString();
+  if (!error.ok()) return std::numeric_limits<float>::infinity();
+  if (rms != nullptr) *rms = error->rms;
+  return error->max;
 }
 
 // The detail spans [-0.02, 0.02]: a 10-bit step of 0.04 / 1023.
 constexpr float kStep = 0.04f / 1023;
 
-TEST(MvidRoundTripTest, Ffv1IsExactUpToQuantisationAtEveryLevel) {
+class MvidPackingTest : public ::testing::TestWithParam<DisplacementPacking> {};
+
+TEST_P(MvidPackingTest, Ffv1IsExactUpToQuantisationAtEveryLevel) {
   Representation rep;
   MvidWriterSettings settings;
   settings.codec = VideoCodec::kFfv1;
+  settings.packing = GetParam();
   settings.levels = 3;
   settings.gof_size = 5;
   const std::vector<std::uint8_t> bytes = WriteRepresentation(rep, settings);
@@ -116,22 +84,32 @@ TEST(MvidRoundTripTest, Ffv1IsExactUpToQuantisationAtEveryLevel) {
   EXPECT_EQ((*decoder)->DecodePositions(0, 4, &late).code(), StatusCode::kInvalidArgument);
 }
 
-// Measured on this content (12 frames, 112x104 pictures, raw 175 kB): HEVC QP 8 codes
-// 50.9 kB at 2.4 steps RMS, QP 32 13.2 kB at 22.7 steps; AV1 QP 8 29.6 kB at 4.1 steps.
-// The bounds below allow +-30% on size and 1.5x on error around those figures.
+INSTANTIATE_TEST_SUITE_P(BothPackings, MvidPackingTest,
+                         ::testing::Values(DisplacementPacking::kLatticeOrder,
+                                           DisplacementPacking::kTriangleBlocks));
+
+// Measured on this content (12 frames of 4,098 samples) by bench/packing_bench: HEVC QP 8 codes
+// 32.5 kB at 2.86 steps RMS in lattice order and 50.9 kB at 2.42 in triangle blocks; QP 32
+// 11.3 kB at 33.1 steps; AV1 CRF 8 (blocks) 29.6 kB at 4.15. The bounds below allow +-30% on
+// size and 1.5x on error around those figures.
 TEST(MvidRoundTripTest, LossyCodecsStayWithinErrorAndSizeBounds) {
   Representation rep;
   struct Point {
     VideoCodec codec;
+    DisplacementPacking packing;
     int qp;
     std::uint64_t bytes;  // measured video bytes
     float rms_steps;      // measured RMS error in quantisation steps
   };
-  for (const Point& point : {Point{VideoCodec::kHevc, 8, 50907, 2.42f},
-                             Point{VideoCodec::kHevc, 32, 13212, 22.7f},
-                             Point{VideoCodec::kAv1, 8, 29564, 4.15f}}) {
+  constexpr auto kLattice = DisplacementPacking::kLatticeOrder;
+  constexpr auto kBlocks = DisplacementPacking::kTriangleBlocks;
+  for (const Point& point : {Point{VideoCodec::kHevc, kLattice, 8, 32548, 2.86f},
+                             Point{VideoCodec::kHevc, kLattice, 32, 11320, 33.1f},
+                             Point{VideoCodec::kHevc, kBlocks, 8, 50907, 2.42f},
+                             Point{VideoCodec::kAv1, kBlocks, 8, 29564, 4.15f}}) {
     MvidWriterSettings settings;
     settings.codec = point.codec;
+    settings.packing = point.packing;
     settings.levels = 3;
     settings.gof_size = 6;
     settings.qp = point.qp;
@@ -141,8 +119,9 @@ TEST(MvidRoundTripTest, LossyCodecsStayWithinErrorAndSizeBounds) {
     ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
     float rms = 0;
     MaxError(**decoder, 3, rep.frames, &rms);
-    const std::string what =
-        std::string(VideoCodecName(point.codec)) + " qp " + std::to_string(point.qp);
+    const std::string what = std::string(VideoCodecName(point.codec)) + " qp " +
+                             std::to_string(point.qp) + " packing " +
+                             std::to_string(static_cast<int>(point.packing));
     EXPECT_LE(rms, 1.5f * point.rms_steps * kStep) << what;
     EXPECT_GE(stats.video_bytes, 0.7 * point.bytes) << what;
     EXPECT_LE(stats.video_bytes, 1.3 * point.bytes) << what;
@@ -185,7 +164,9 @@ TEST(MvidRoundTripTest, TruncatedFilesKeepTheirCompleteGroups) {
   // Cut before the first group: opening fails or yields no frames, never crashes.
   for (std::size_t cut = 0; cut < 200; cut += 13) {
     auto decoder = MvidDecoder::OpenMemory({bytes.begin(), bytes.begin() + cut});
-    if (decoder.ok()) EXPECT_EQ((*decoder)->info().frame_count, 0u);
+    if (decoder.ok()) {
+      EXPECT_EQ((*decoder)->info().frame_count, 0u);
+    }
   }
 }
 

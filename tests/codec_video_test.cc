@@ -145,7 +145,9 @@ TEST(VideoCoderTest, RejectsBadSettingsAndGarbage) {
   std::vector<GreyPicture> pictures;
   const Status status = (*decoder)->Decode(garbage, &pictures);
   // Garbage either fails to decode or yields nothing; it never yields a wrong-size picture.
-  if (!status.ok()) EXPECT_EQ(status.code(), StatusCode::kCorrupt);
+  if (!status.ok()) {
+    EXPECT_EQ(status.code(), StatusCode::kCorrupt);
+  }
   for (const auto& p : pictures) EXPECT_EQ(p.samples.size(), std::size_t{kWidth * kHeight});
   EXPECT_EQ(VideoDecoder::Create(VideoCodec::kHevc, 0, 10, {}).status().code(),
             StatusCode::kCorrupt);

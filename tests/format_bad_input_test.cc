@@ -113,7 +113,9 @@ TEST(FormatBadInputTest, TruncationAtEveryOffsetKeepsCompleteGofs) {
           break;
         }
         ASSERT_NE(item->kind, StreamItem::Kind::kEnd) << cut;
-        if (item->kind == StreamItem::Kind::kGof) EXPECT_EQ(item->gof, Gof(streamed++)) << cut;
+        if (item->kind == StreamItem::Kind::kGof) {
+          EXPECT_EQ(item->gof, Gof(streamed++)) << cut;
+        }
       }
     }
     EXPECT_EQ(streamed, complete) << cut;
@@ -134,10 +136,16 @@ TEST(FormatBadInputTest, EverySingleBitFlipIsDetected) {
     auto reader = ContainerReader::OpenMemory(flipped);
     if (!reader.ok()) continue;
     EXPECT_EQ(reader->header().streams.size(), 1u);
-    if (auto base = reader->ReadBase(); base.ok()) EXPECT_EQ(*base, Bytes("base")) << bit;
-    if (auto motion = reader->ReadMotion(); motion.ok()) EXPECT_EQ(*motion, Bytes("motion"));
+    if (auto base = reader->ReadBase(); base.ok()) {
+      EXPECT_EQ(*base, Bytes("base")) << bit;
+    }
+    if (auto motion = reader->ReadMotion(); motion.ok()) {
+      EXPECT_EQ(*motion, Bytes("motion"));
+    }
     for (size_t k = 0; k < reader->gof_count(); ++k) {
-      if (auto gof = reader->ReadGof(k); gof.ok()) EXPECT_EQ(*gof, Gof(k)) << "bit " << bit;
+      if (auto gof = reader->ReadGof(k); gof.ok()) {
+        EXPECT_EQ(*gof, Gof(k)) << "bit " << bit;
+      }
     }
   }
 }

@@ -23,8 +23,23 @@ int DisplacementRange::Quantize(float displacement) const {
   return static_cast<int>(std::clamp<long>(code, 0, kDisplacementMaxCode));
 }
 
-DisplacementLayout DisplacementLayout::ForSubdivision(const RegularSubdivision& subdivision) {
+DisplacementLayout DisplacementLayout::ForSubdivision(const RegularSubdivision& subdivision,
+                                                      DisplacementPacking packing) {
   DisplacementLayout layout;
+  if (packing == DisplacementPacking::kLatticeOrder) {
+    const std::size_t count = subdivision.samples().size();
+    const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(double(count))));
+    layout.width_ = std::max(64, RoundUpTo8(side));
+    layout.height_ = std::max(8, RoundUpTo8((count + layout.width_ - 1) / layout.width_));
+    layout.sample_of_pixel_.assign(static_cast<std::size_t>(layout.width_) * layout.height_,
+                                   kPadding);
+    layout.pixel_of_sample_.resize(count);
+    for (std::size_t s = 0; s < count; ++s) {
+      layout.sample_of_pixel_[s] = static_cast<std::uint32_t>(s);
+      layout.pixel_of_sample_[s] = static_cast<std::uint32_t>(s);
+    }
+    return layout;
+  }
   const int n = subdivision.segments_per_edge();
   const int block = n + 1;
   const std::size_t triangles = subdivision.base_triangles().size();

@@ -1,15 +1,25 @@
 // Packing of one frame's displacement field into a 10-bit grey picture, and back.
 //
-// Layout (format version 1, "triangle blocks"): every base triangle owns a square block of
+// Two packings, chosen per file and stated in every group's side information:
+//
+// Lattice order (kLatticeOrder): the samples in subdivision order (level by level) fill the
+// picture row by row; width = max(64, roundup8(ceil(sqrt(S)))) for S samples, height =
+// roundup8(ceil(S / width)). Few pixels; neighbouring pixels are not always neighbours on
+// the surface.
+//
+// Triangle blocks (kTriangleBlocks): every base triangle owns a square block of
 // (n+1) x (n+1) pixels, n = 2^levels. Lattice point (i, j) of the triangle (weights
 // 1 - i/n - j/n, i/n, j/n of its corners) sits at pixel (i, j) of the block (x to the right,
 // y down); pixels with i + j > n mirror the point (n - j, n - i) across the anti-diagonal, so
 // the block is smooth where the surface is. Blocks follow the base triangles' order, left to
 // right then top to bottom, ceil(sqrt(F)) blocks per row; the picture is then padded to
-// multiples of 8 with the code of displacement 0. Samples shared by several triangles
+// multiples of 8. Samples shared by several triangles
 // (edges, corners) are written in each block and read from the triangle the subdivision
-// assigns them to (SubdivisionSample::triangle), so every sample has one value.
-// Quantisation is uniform per group of frames: displacement = minimum + code * step.
+// assigns them to (SubdivisionSample::triangle), so every sample has one value. About 2.5x
+// the pixels of lattice order, but smooth within each block.
+//
+// In both, pixels that show no sample hold the code of displacement 0. Quantisation is
+// uniform per group of frames: displacement = minimum + code * step.
 #ifndef MESHVID_CODEC_COMMON_DISPLACEMENT_IMAGE_H_
 #define MESHVID_CODEC_COMMON_DISPLACEMENT_IMAGE_H_
 
@@ -38,11 +48,18 @@ struct DisplacementRange {
   int Quantize(float displacement) const;
 };
 
+/// How samples are arranged in a picture. The values are stored in files: never renumber.
+enum class DisplacementPacking : std::uint8_t {
+  kTriangleBlocks = 1,
+  kLatticeOrder = 2,
+};
+
 /// Where every sample of a subdivision lattice sits in the displacement picture.
 class DisplacementLayout {
  public:
-  /// The version-1 triangle-block layout of `subdivision` (see above).
-  static DisplacementLayout ForSubdivision(const RegularSubdivision& subdivision);
+  /// The layout of `subdivision` with `packing` (see above).
+  static DisplacementLayout ForSubdivision(const RegularSubdivision& subdivision,
+                                           DisplacementPacking packing);
 
   int width() const { return width_; }
   int height() const { return height_; }

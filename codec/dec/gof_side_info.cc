@@ -21,6 +21,12 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
                             " is not supported (this decoder reads version 1)");
   }
   GofSideInfo info;
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t packing, reader.ReadU8("displacement_packing"));
+  if (packing != static_cast<std::uint8_t>(DisplacementPacking::kTriangleBlocks) &&
+      packing != static_cast<std::uint8_t>(DisplacementPacking::kLatticeOrder)) {
+    return reader.Error("unknown displacement_packing " + std::to_string(packing));
+  }
+  info.packing = static_cast<DisplacementPacking>(packing);
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t minimum, reader.ReadU32("displacement_minimum"));
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t step, reader.ReadU32("displacement_step"));
   info.displacement_range.minimum = std::bit_cast<float>(minimum);
@@ -39,11 +45,13 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
   return info;
 }
 
-std::vector<std::uint8_t> EncodeGofSideInfo(const DisplacementRange& range,
+std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
+                                            const DisplacementRange& range,
                                             std::span<const std::uint8_t> video_config,
                                             std::span<const std::uint8_t> transforms_payload) {
   ByteWriter writer;
   writer.PutU8(kSideInfoVersion);
+  writer.PutU8(static_cast<std::uint8_t>(packing));
   writer.PutU32(std::bit_cast<std::uint32_t>(range.minimum));
   writer.PutU32(std::bit_cast<std::uint32_t>(range.step));
   writer.PutU32(static_cast<std::uint32_t>(video_config.size()));

@@ -2,7 +2,8 @@
 // field: the displacement quantiser of the group, the configuration record of the group's
 // video encoder session (FFV1 needs one; HEVC and AV1 send theirs in-band, so it is empty),
 // then the group's transform track payload.
-//   u8 side_info_version (1) | f32 displacement_minimum | f32 displacement_step |
+//   u8 side_info_version (1) | u8 displacement_packing | f32 displacement_minimum |
+//   f32 displacement_step |
 //   u32 video_config_size | video_config bytes | transforms payload (motion_decoder.h)
 #ifndef MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_
 #define MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_
@@ -20,6 +21,7 @@ namespace meshvid {
 
 /// Decoded side information of one group.
 struct GofSideInfo {
+  DisplacementPacking packing = DisplacementPacking::kTriangleBlocks;
   DisplacementRange displacement_range;
   std::vector<std::uint8_t> video_config;  ///< the video decoder's configuration record
   std::vector<std::vector<RigidTransform>> transforms;  ///< [frame in group][segment]
@@ -30,9 +32,10 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
                                         std::uint32_t frame_count, std::uint32_t segment_count,
                                         const MotionQuantization& quantization);
 
-/// The bytes of a group's side information from its range, video configuration record and
-/// coded transforms.
-std::vector<std::uint8_t> EncodeGofSideInfo(const DisplacementRange& range,
+/// The bytes of a group's side information from its packing, range, video configuration
+/// record and coded transforms.
+std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
+                                            const DisplacementRange& range,
                                             std::span<const std::uint8_t> video_config,
                                             std::span<const std::uint8_t> transforms_payload);
 

@@ -15,6 +15,7 @@ struct MvidDecoder::Group {
   std::size_t index = 0;
   std::uint32_t first_frame = 0;
   GofSideInfo side;
+  const DisplacementLayout* layout = nullptr;  ///< the layout of side.packing
   std::vector<GreyPicture> pictures;  ///< in presentation order, one per frame
 };
 
@@ -160,13 +161,6 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
   motion_ = std::move(motion.model);
   quantization_ = motion.quantization;
   MESHVID_ASSIGN_OR_RETURN(subdivision_, RegularSubdivision::Create(base_, info.levels));
-  layout_ = DisplacementLayout::ForSubdivision(subdivision_);
-  if (layout_.width() != info.picture_width || layout_.height() != info.picture_height) {
-    return CorruptError(name + ": displacement picture is " + std::to_string(info.picture_width) +
-                        "x" + std::to_string(info.picture_height) + ", the layout of this base " +
-                        "mesh and level count needs " + std::to_string(layout_.width()) + "x" +
-                        std::to_string(layout_.height()));
-  }
   info.base_vertices = base_.vertex_count();
   info.base_triangles = base_.triangle_count();
   info.segments = motion_.segment_count;
@@ -178,6 +172,21 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
   }
   triangles_.resize(info.levels + 1);
   return Status::Ok();
+}
+
+StatusOr<const DisplacementLayout*> MvidDecoder::LayoutFor(DisplacementPacking packing) {
+  auto it = layouts_.find(packing);
+  if (it == layouts_.end()) {
+    it = layouts_.emplace(packing, DisplacementLayout::ForSubdivision(subdivision_, packing)).first;
+  }
+  const DisplacementLayout& layout = it->second;
+  if (layout.width() != info_.picture_width || layout.height() != info_.picture_height) {
+    return CorruptError("displacement picture is " + std::to_string(info_.picture_width) + "x" +
+                        std::to_string(info_.picture_height) + ", the packing of this base " +
+                        "mesh and level count needs " + std::to_string(layout.width()) + "x" +
+                        std::to_string(layout.height()));
+  }
+  return &layout;
 }
 
 Status MvidDecoder::CheckLevel(int level) const {
@@ -213,9 +222,10 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   group->first_frame = gof.first_frame;
   MESHVID_ASSIGN_OR_RETURN(group->side, DecodeGofSideInfo(gof.transforms, gof.frame_count,
                                                           motion_.segment_count, quantization_));
+  MESHVID_ASSIGN_OR_RETURN(group->layout, LayoutFor(group->side.packing));
   MESHVID_ASSIGN_OR_RETURN(
       std::unique_ptr<VideoDecoder> video,
-      VideoDecoder::Create(info_.codec, layout_.width(), layout_.height(),
+      VideoDecoder::Create(info_.codec, info_.picture_width, info_.picture_height,
                            group->side.video_config, options_.threads));
   VideoPacket packet;
   for (std::size_t p = 0; p < gof.packets[0].size(); ++p) {
@@ -249,7 +259,7 @@ StatusOr<MvidStreamSizes> MvidDecoder::MeasureStreams() {
 Status MvidDecoder::DecodeDisplacements(std::uint32_t frame, std::vector<float>* displacements) {
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
-  layout_.Unpack(group_->pictures[local], group_->side.displacement_range,
+  group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range,
                  subdivision_.samples().size(), displacements);
   return Status::Ok();
 }
@@ -271,7 +281,7 @@ Status MvidDecoder::DecodePositions(std::uint32_t frame, int level,
   const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(posed_base);
   EvaluateSampleFrames(subdivision_, level, posed_, normals, &origins_, &directions_);
   const std::size_t count = subdivision_.sample_count(level);
-  layout_.Unpack(group_->pictures[local], group_->side.displacement_range, count,
+  group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range, count,
                  &displacements_);
   positions->resize(count);
   for (std::size_t s = 0; s < count; ++s) {

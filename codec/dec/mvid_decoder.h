@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <istream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -101,6 +102,8 @@ class MvidDecoder {
   static StatusOr<std::unique_ptr<MvidDecoder>> OpenIndexed(ContainerReader reader,
                                                             const MvidDecoderOptions& options);
   Status LoadGroupOf(std::uint32_t frame);
+  /// The layout of `packing` (built once), checked against the stream's picture size.
+  StatusOr<const DisplacementLayout*> LayoutFor(DisplacementPacking packing);
   Status CheckLevel(int level) const;
 
   MvidDecoderOptions options_;
@@ -110,7 +113,7 @@ class MvidDecoder {
   MotionModel motion_;
   MotionQuantization quantization_;
   RegularSubdivision subdivision_;
-  DisplacementLayout layout_;
+  std::map<DisplacementPacking, DisplacementLayout> layouts_;
   std::vector<std::vector<Triangle>> triangles_;  ///< per level, filled on first use
   std::unique_ptr<Group> group_;                  ///< the decoded group in use
   // Scratch buffers reused across frames.

@@ -43,7 +43,7 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   writer->decoded_base_ = std::move(base_coded.decoded);
   MESHVID_ASSIGN_OR_RETURN(writer->subdivision_,
                            RegularSubdivision::Create(writer->decoded_base_, settings.levels));
-  writer->layout_ = DisplacementLayout::ForSubdivision(writer->subdivision_);
+  writer->layout_ = DisplacementLayout::ForSubdivision(writer->subdivision_, settings.packing);
   MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes,
                            EncodeMotionModel(motion, settings.motion));
 
@@ -141,7 +141,8 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
   gof.gof_index = next_gof_;
   gof.first_frame = next_frame_;
   gof.frame_count = static_cast<std::uint32_t>(frames);
-  gof.transforms = EncodeGofSideInfo(range, encoder->extradata(), coded_transforms.bytes);
+  gof.transforms =
+      EncodeGofSideInfo(settings_.packing, range, encoder->extradata(), coded_transforms.bytes);
   gof.packets.resize(1);
   for (VideoPacket& packet : packets) {
     stats_.video_bytes += packet.data.size();

@@ -21,6 +21,11 @@ std::string_view VideoCodecName(VideoCodec codec);
 /// Parses a name as printed by VideoCodecName.
 std::optional<VideoCodec> ParseVideoCodec(std::string_view name);
 
+/// The codec's tag in the container's stream table: "hevc", "av01", "ffv1".
+std::string_view VideoCodecTag(VideoCodec codec);
+/// Parses a stream-table tag as written by VideoCodecTag.
+std::optional<VideoCodec> ParseVideoCodecTag(std::string_view tag);
+
 /// One coded access unit of a displacement video.
 struct VideoPacket {
   std::int64_t pts = 0;  ///< presentation index of the frame it completes

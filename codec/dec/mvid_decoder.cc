@@ -21,13 +21,6 @@ struct MvidDecoder::Group {
 
 MvidDecoder::~MvidDecoder() = default;
 
-StatusOr<VideoCodec> VideoCodecFromTag(const std::string& tag) {
-  if (tag == "hevc") return VideoCodec::kHevc;
-  if (tag == "av01") return VideoCodec::kAv1;
-  if (tag == "ffv1") return VideoCodec::kFfv1;
-  return UnsupportedError("video codec '" + tag + "' is not supported");
-}
-
 /// Where the decoder gets its groups of frames from.
 class MvidDecoder::GroupSource {
  public:
@@ -148,7 +141,12 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
     return CorruptError(name + ": " + std::to_string(header.level_count) + " levels");
   }
   MvidInfo& info = info_;
-  MESHVID_ASSIGN_OR_RETURN(info.codec, VideoCodecFromTag(header.streams[0].codec));
+  const std::optional<VideoCodec> codec = ParseVideoCodecTag(header.streams[0].codec);
+  if (!codec) {
+    return UnsupportedError(name + ": video codec '" + header.streams[0].codec +
+                            "' is not supported");
+  }
+  info.codec = *codec;
   info.frame_rate = double(header.frame_rate_numerator) / header.frame_rate_denominator;
   info.gof_size = header.gof_size;
   info.levels = static_cast<int>(header.level_count);

@@ -121,9 +121,6 @@ class MvidDecoder {
   std::vector<float> displacements_;
 };
 
-/// Parses a codec tag of the stream table ("hevc", "av01", "ffv1").
-StatusOr<VideoCodec> VideoCodecFromTag(const std::string& tag);
-
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_DEC_MVID_DECODER_H_

@@ -13,15 +13,6 @@ namespace meshvid {
 
 MvidWriter::~MvidWriter() = default;
 
-std::string VideoCodecTag(VideoCodec codec) {
-  switch (codec) {
-    case VideoCodec::kHevc: return "hevc";
-    case VideoCodec::kAv1: return "av01";
-    case VideoCodec::kFfv1: return "ffv1";
-  }
-  return "????";
-}
-
 StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const TriangleMesh& base,
                                                          const MotionModel& motion,
                                                          const MvidWriterSettings& settings) {
@@ -55,7 +46,7 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   header.frame_count = settings.frame_count;
   header.gof_size = static_cast<std::uint32_t>(settings.gof_size);
   header.level_count = static_cast<std::uint32_t>(settings.levels);
-  header.streams.push_back({VideoCodecTag(settings.codec),
+  header.streams.push_back({std::string(VideoCodecTag(settings.codec)),
                             static_cast<std::uint32_t>(writer->layout_.width()),
                             static_cast<std::uint32_t>(writer->layout_.height()), 10,
                             "displacement"});

@@ -87,9 +87,6 @@ class MvidWriter {
   std::uint32_t next_gof_ = 0;
 };
 
-/// The codec tag of a video codec in the container's stream table ("hevc", "av01", "ffv1").
-std::string VideoCodecTag(VideoCodec codec);
-
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_ENC_MVID_WRITER_H_

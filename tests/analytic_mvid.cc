@@ -133,9 +133,9 @@ std::vector<Eigen::Vector3f> ExactPositions(const MvidDecoder& decoder, int fram
   EvaluateSampleFrames(lattice, level, base.positions, ComputeVertexNormals(base), &rest,
                        &directions);
   PoseVertices(decoder.motion(), transforms, base.positions, &posed);
-  const TriangleMesh posed_mesh{posed, base.triangles, {}};
-  EvaluateSampleFrames(lattice, level, posed, ComputeVertexNormals(posed_mesh), &origins,
-                       &directions);
+  std::vector<Eigen::Vector3f> posed_normals;
+  ComputeVertexNormals(posed, base.triangles, &posed_normals);
+  EvaluateSampleFrames(lattice, level, posed, posed_normals, &origins, &directions);
   std::vector<Eigen::Vector3f> exact;
   for (std::size_t s = 0; s < origins.size(); ++s) {
     exact.push_back(origins[s] + DetailAt(rest[s], frame) * directions[s]);

@@ -66,18 +66,25 @@ Eigen::Vector3f TriangleNormal(const TriangleMesh& mesh, std::size_t t) {
   return len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::Zero();
 }
 
-std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh) {
-  std::vector<Eigen::Vector3f> normals(mesh.positions.size(), Eigen::Vector3f::Zero());
-  for (const auto& tri : mesh.triangles) {
+void ComputeVertexNormals(std::span<const Eigen::Vector3f> positions,
+                          std::span<const Triangle> triangles,
+                          std::vector<Eigen::Vector3f>* normals) {
+  normals->assign(positions.size(), Eigen::Vector3f::Zero());
+  for (const auto& tri : triangles) {
     // The unnormalised cross product weighs each face by twice its area.
-    const Eigen::Vector3f n = (mesh.positions[tri[1]] - mesh.positions[tri[0]])
-                                  .cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]);
-    for (int c = 0; c < 3; ++c) normals[tri[c]] += n;
+    const Eigen::Vector3f n =
+        (positions[tri[1]] - positions[tri[0]]).cross(positions[tri[2]] - positions[tri[0]]);
+    for (int c = 0; c < 3; ++c) (*normals)[tri[c]] += n;
   }
-  for (auto& n : normals) {
+  for (auto& n : *normals) {
     const float len = n.norm();
     if (len > 0) n /= len;
   }
+}
+
+std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3f> normals;
+  ComputeVertexNormals(mesh.positions, mesh.triangles, &normals);
   return normals;
 }
 

@@ -4,6 +4,7 @@
 #define MESHVID_CODEC_COMMON_MESH_H_
 
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -42,6 +43,11 @@ void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);
 
 /// Area-weighted unit vertex normals (zero vector for an isolated vertex).
 std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh);
+/// The same for positions and triangles held apart (e.g. a posed copy of a mesh's vertices),
+/// written into `normals` (resized to the vertex count) so a caller can reuse the buffer.
+void ComputeVertexNormals(std::span<const Eigen::Vector3f> positions,
+                          std::span<const Triangle> triangles,
+                          std::vector<Eigen::Vector3f>* normals);
 
 /// Unit normal of triangle `t` (zero for a degenerate triangle).
 Eigen::Vector3f TriangleNormal(const TriangleMesh& mesh, std::size_t t);

@@ -273,11 +273,8 @@ Status MvidDecoder::DecodePositions(std::uint32_t frame, int level,
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
   PoseVertices(motion_, group_->side.transforms[local], base_.positions, &posed_);
-  TriangleMesh posed_base;
-  posed_base.positions = posed_;
-  posed_base.triangles = base_.triangles;
-  const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(posed_base);
-  EvaluateSampleFrames(subdivision_, level, posed_, normals, &origins_, &directions_);
+  ComputeVertexNormals(posed_, base_.triangles, &normals_);
+  EvaluateSampleFrames(subdivision_, level, posed_, normals_, &origins_, &directions_);
   const std::size_t count = subdivision_.sample_count(level);
   group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range, count,
                  &displacements_);

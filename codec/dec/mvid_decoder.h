@@ -117,7 +117,7 @@ class MvidDecoder {
   std::vector<std::vector<Triangle>> triangles_;  ///< per level, filled on first use
   std::unique_ptr<Group> group_;                  ///< the decoded group in use
   // Scratch buffers reused across frames.
-  std::vector<Eigen::Vector3f> posed_, origins_, directions_;
+  std::vector<Eigen::Vector3f> posed_, normals_, origins_, directions_;
   std::vector<float> displacements_;
 };
 

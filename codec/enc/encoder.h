@@ -1,0 +1,104 @@
+// The meshvid encoder: a multi-view capture in, a .mvid out, by the method of method.md
+// (base mesh, multi-frame piecewise-rigid segmentation, fused displacement video).
+#ifndef MESHVID_CODEC_ENC_ENCODER_H_
+#define MESHVID_CODEC_ENC_ENCODER_H_
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "codec/common/mesh.h"
+#include "codec/common/progress.h"
+#include "codec/common/video_codec.h"
+#include "codec/enc/mvid_writer.h"
+#include "format/container_writer.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// The encoder's input: K views x M frames of range meshes in world coordinates. Frames are
+/// loaded on demand, a window at a time, so a long capture never has to be in memory whole.
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual int frame_count() const = 0;
+  virtual int view_count() const = 0;
+  virtual double frame_rate() const = 0;
+  /// All views of frame `frame` (0-based), in view order. May be called from one thread only.
+  virtual StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const = 0;
+};
+
+/// Every setting of the encoder. Lengths are in scene units; 0 means "derived from the
+/// data's size" (a fraction of frame 0's bounding-box diagonal, given beside each).
+struct EncoderOptions {
+  // --- base mesh
+  /// A user base mesh (an animator's control model), rigidly fitted to frame 0. Empty: fuse
+  /// frame 0's views and decimate.
+  std::optional<TriangleMesh> base_mesh;
+  std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
+  /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
+  double base_max_error = 0;
+  double base_max_normal_deviation_degrees = 30;
+
+  // --- correspondence (method.md 5.1)
+  double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy
+  double max_distance = 0;        ///< farthest correspondence along a normal (0: 3%)
+  double max_angle_degrees = 60;  ///< largest angle between base normal and data normal
+
+  // --- segmentation (method.md 5.2-5.4)
+  double tolerance = 0;          ///< UserTol of eq. 6 (0: 0.5% of the diagonal)
+  double initial_tolerance_factor = 3;  ///< the search starts at this x tolerance
+  double tolerance_shrink = 0.8;        ///< factor applied to the tolerance per step
+  int min_segment_vertices = 3;  ///< smaller pieces end the segmentation
+  int max_segments = 64;         ///< most segments
+  int occlusion_frames = 5;      ///< frames a vertex may miss and stay in its segment
+  int icp_iterations = 3;        ///< rigid solves per tolerance step and frame
+  int key_frames = 0;            ///< frames the segmentation looks at (0: all, up to window)
+  int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
+
+  // --- detail (method.md section 6)
+  int levels = 3;                ///< subdivision levels of the displacement lattice
+  double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
+  double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
+
+  // --- coding
+  VideoCodec codec = VideoCodec::kHevc;
+  int quality = 60;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
+  int effort = 4;                ///< video encoder effort 0..9
+  int gof_size = 32;             ///< frames per group (random-access unit)
+  int window = 64;               ///< most capture frames held in memory at once
+  int first_frame = 0;           ///< frames [first_frame, end_frame) are encoded
+  int end_frame = -1;            ///< -1: to the end
+  std::string metadata_json = "{}";
+};
+
+/// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).
+int QualityToQp(VideoCodec codec, int quality);
+
+/// What an encode produced, for the summary a tool prints.
+struct EncodeSummary {
+  int frames = 0;
+  int views = 0;
+  std::size_t base_vertices = 0;
+  std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
+  int segments = 0;
+  double registered_share = 0;  ///< base vertices that joined a segment
+  double filled_share = 0;      ///< displacement samples filled by interpolation
+  double hit_share = 0;         ///< samples with a fused measurement
+  double frame_rate = 25.0;
+  MvidWriteStats stats;
+  double scale = 0;             ///< frame 0's bounding-box diagonal
+  double tolerance = 0;         ///< tolerances actually used (scene units)
+  double seconds_base = 0, seconds_proxies = 0, seconds_segmentation = 0,
+         seconds_detail = 0, seconds_coding = 0;
+};
+
+/// Encodes frames of `source` into `sink`. Stages report progress ("base mesh", "proxies",
+/// "segmentation", "detail"); a cancelled callback stops with kCancelled.
+StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
+                                      const EncoderOptions& options,
+                                      const ProgressCallback& progress = {});
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_ENCODER_H_

@@ -19,11 +19,22 @@ struct SurfaceFusionOptions {
   double spacing = 0;
   /// Most input points used; denser input is thinned on a grid first (speed bound).
   std::size_t max_points = 60000;
+  /// Output triangle size bound: largest radius of a triangle's surface Delaunay ball, in
+  /// spacings (CGAL's sm_radius; the default lets flat parts get large triangles).
+  double max_triangle_radius = 30;
+  /// Output accuracy bound: largest distance between a triangle's Delaunay-ball centre and
+  /// the reconstructed implicit surface, in spacings (CGAL's sm_distance). Smaller values
+  /// give more triangles where the surface curves.
+  double max_surface_distance = 0.375;
 };
 
 /// Fuses range meshes into one closed surface (watertight where the data allows), oriented
 /// with normals pointing out of the captured object. Views may overlap, be noisy and have
-/// holes. Fails if the views hold too few points to reconstruct anything.
+/// holes; their triangles must face their sensor (out of the object), which orients the
+/// points' normals (the views' own normals are used if present). Poisson surface
+/// reconstruction (CGAL), contoured closed; the largest connected component is kept, with
+/// area-weighted vertex normals. The result depends on the input only (same views, same
+/// mesh, vertex for vertex). Fails if the views hold too few points or lie in one plane.
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
                                        const SurfaceFusionOptions& options = {},
                                        const ProgressCallback& progress = {});

@@ -1,0 +1,355 @@
+// Tests of the automatic base mesh's two steps: DecimateMesh (OpenMesh decimater) and
+// FuseRangeMeshes (CGAL Poisson reconstruction of the views of one frame).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "codec/enc/decimation.h"
+#include "codec/enc/surface_fusion.h"
+#include "tests/test_util.h"
+#include "tools/io/capture.h"
+
+namespace meshvid {
+namespace {
+
+using Eigen::Vector3f;
+
+// A unit-radius icosphere: an icosahedron subdivided `levels` times, projected on the sphere.
+TriangleMesh MakeIcosphere(int levels, float radius = 1.0f) {
+  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  TriangleMesh mesh;
+  mesh.positions = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  const int faces[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                            {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (const auto& f : faces) mesh.triangles.emplace_back(f[0], f[1], f[2]);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto [it, inserted] = midpoints.emplace(key, 0);
+      if (inserted) {
+        it->second = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]) / 2);
+      }
+      return it->second;
+    };
+    std::vector<Triangle> finer;
+    for (const Triangle& t : mesh.triangles) {
+      const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]),
+                          ca = midpoint(t[2], t[0]);
+      finer.emplace_back(t[0], ab, ca);
+      finer.emplace_back(t[1], bc, ab);
+      finer.emplace_back(t[2], ca, bc);
+      finer.emplace_back(ab, bc, ca);
+    }
+    mesh.triangles = std::move(finer);
+  }
+  for (Vector3f& p : mesh.positions) p = p.normalized() * radius;
+  return mesh;
+}
+
+// Distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+float PointTriangleDistance(const Vector3f& p, const Vector3f& a, const Vector3f& b,
+                            const Vector3f& c) {
+  const Vector3f ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
+  const Vector3f bp = p - b;
+  const float d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
+  const Vector3f cp = p - c;
+  const float d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
+  }
+  const float denom = 1 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+// Largest distance from a vertex of `from` to the surface of `to` (brute force).
+float MaxVertexDistance(const TriangleMesh& from, const TriangleMesh& to) {
+  float worst = 0;
+  for (const Vector3f& p : from.positions) {
+    float best = INFINITY;
+    for (const Triangle& t : to.triangles) {
+      best = std::min(best, PointTriangleDistance(p, to.positions[t[0]], to.positions[t[1]],
+                                                  to.positions[t[2]]));
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+// True if every directed edge occurs once and its reverse once: closed and oriented.
+bool IsClosedAndOriented(const TriangleMesh& mesh) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> directed;
+  for (const Triangle& t : mesh.triangles) {
+    for (int c = 0; c < 3; ++c) {
+      if (!directed.emplace(t[c], t[(c + 1) % 3]).second) return false;
+    }
+  }
+  for (const auto& [a, b] : directed) {
+    if (!directed.count({b, a})) return false;
+  }
+  return true;
+}
+
+double SignedVolume(const TriangleMesh& mesh) {
+  double volume = 0;
+  for (const Triangle& t : mesh.triangles) {
+    volume += mesh.positions[t[0]].cast<double>().dot(
+                  mesh.positions[t[1]].cast<double>().cross(mesh.positions[t[2]].cast<double>())) /
+              6.0;
+  }
+  return volume;
+}
+
+TEST(DecimateMeshTest, ClosedSphereReachesTargetWithinMaxError) {
+  const TriangleMesh sphere = MakeIcosphere(5);  // 10242 vertices
+  DecimationOptions options;
+  options.target_vertices = 500;
+  options.max_error = 0.01;
+  options.max_normal_deviation_degrees = 30;
+  auto decimated = DecimateMesh(sphere, options);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+  EXPECT_GE(decimated->vertex_count(), 500u);
+  EXPECT_LE(decimated->vertex_count(), 515u);
+  EXPECT_TRUE(IsClosedAndOriented(*decimated));
+  EXPECT_GT(SignedVolume(*decimated), 3.5);  // 4/3 pi = 4.19 for the sphere
+  EXPECT_LE(MaxVertexDistance(sphere, *decimated), 0.01f * 1.001f);
+  // Halfedge collapses keep vertices where they were: every vertex lies on the sphere.
+  for (const Vector3f& p : decimated->positions) EXPECT_NEAR(p.norm(), 1.0f, 1e-6f);
+  EXPECT_TRUE(ValidateMesh(*decimated, "decimated").ok());
+}
+
+TEST(DecimateMeshTest, MaxErrorStopsEarly) {
+  const TriangleMesh sphere = MakeIcosphere(4);  // 2562 vertices
+  DecimationOptions options;
+  options.target_vertices = 50;
+  options.max_error = 0.002;
+  auto decimated = DecimateMesh(sphere, options);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+  EXPECT_GT(decimated->vertex_count(), 200u);  // a 50-vertex sphere deviates by ~0.1
+  EXPECT_LT(decimated->vertex_count(), sphere.vertex_count());
+  EXPECT_LE(MaxVertexDistance(sphere, *decimated), 0.002f * 1.001f);
+}
+
+TEST(DecimateMeshTest, PlaneToTriangleTargetKeepsOutline) {
+  const TriangleMesh plane = testing::MakeGridPlane(1.0f, 100);  // 20000 triangles
+  DecimationOptions options;
+  options.target_vertices = 0;
+  options.target_triangles = 1000;
+  auto decimated = DecimateMesh(plane, options);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+  EXPECT_GE(decimated->triangle_count(), 990u);
+  EXPECT_LE(decimated->triangle_count(), 1030u);
+  // Boundary planes in the priority keep the square's outline and corners.
+  const Eigen::AlignedBox3f box = BoundingBox(*decimated);
+  EXPECT_TRUE(box.min().isApprox(Vector3f(-0.5f, -0.5f, 0), 1e-6f)) << box.min().transpose();
+  EXPECT_TRUE(box.max().isApprox(Vector3f(0.5f, 0.5f, 0), 1e-6f)) << box.max().transpose();
+  EXPECT_NEAR(SurfaceArea(*decimated), 1.0, 1e-4);
+  ASSERT_EQ(decimated->normals.size(), decimated->vertex_count());
+  for (const Vector3f& n : decimated->normals) EXPECT_GT(n.z(), 0.999f);
+}
+
+TEST(DecimateMeshTest, LockBoundaryKeepsEveryBoundaryVertex) {
+  const TriangleMesh plane = testing::MakeGridPlane(1.0f, 60);  // 240 boundary vertices
+  DecimationOptions options;
+  options.target_vertices = 300;
+  options.lock_boundary = true;
+  auto decimated = DecimateMesh(plane, options);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+  EXPECT_GE(decimated->vertex_count(), 300u);
+  EXPECT_LE(decimated->vertex_count(), 310u);
+  std::set<std::pair<float, float>> kept;
+  for (const Vector3f& p : decimated->positions) kept.emplace(p.x(), p.y());
+  int boundary = 0;
+  for (const Vector3f& p : plane.positions) {
+    if (std::abs(p.x()) < 0.4999f && std::abs(p.y()) < 0.4999f) continue;
+    ++boundary;
+    EXPECT_TRUE(kept.count({p.x(), p.y()})) << p.transpose();
+  }
+  EXPECT_EQ(boundary, 240);
+}
+
+TEST(DecimateMeshTest, NonManifoldInputIsCleanedNotFatal) {
+  TriangleMesh mesh = testing::MakeGridPlane(1.0f, 10);
+  mesh.normals.clear();
+  const Triangle first = mesh.triangles[0];
+  mesh.triangles.push_back(first);                                   // duplicate
+  mesh.triangles.emplace_back(first[0], first[1], first[1]);         // degenerate
+  mesh.positions.emplace_back(0.0f, 0.0f, 1.0f);                     // a fin on an edge
+  mesh.triangles.emplace_back(first[1], first[0],
+                              static_cast<std::uint32_t>(mesh.positions.size() - 1));
+  mesh.positions.emplace_back(5.0f, 5.0f, 5.0f);                     // unreferenced
+  DecimationOptions options;
+  options.target_vertices = 30;
+  auto decimated = DecimateMesh(mesh, options);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+  EXPECT_TRUE(ValidateMesh(*decimated, "decimated").ok());
+  EXPECT_LE(decimated->vertex_count(), 32u);
+  for (const Vector3f& p : decimated->positions) EXPECT_LT(p.norm(), 2.0f);
+}
+
+TEST(DecimateMeshTest, InvalidInputFails) {
+  DecimationOptions options;
+  EXPECT_FALSE(DecimateMesh(TriangleMesh{}, options).ok());
+  TriangleMesh bad = testing::MakeGridPlane(1.0f, 4);
+  bad.triangles.emplace_back(0, 1, 999);
+  EXPECT_FALSE(DecimateMesh(bad, options).ok());
+  const TriangleMesh plane = testing::MakeGridPlane(1.0f, 4);
+  options.target_vertices = 0;
+  EXPECT_EQ(DecimateMesh(plane, options).status().code(), StatusCode::kInvalidArgument);
+  options.target_vertices = 10;
+  options.max_error = -1;
+  EXPECT_EQ(DecimateMesh(plane, options).status().code(), StatusCode::kInvalidArgument);
+  options.max_error = 0;
+  options.max_normal_deviation_degrees = 200;
+  EXPECT_EQ(DecimateMesh(plane, options).status().code(), StatusCode::kInvalidArgument);
+}
+
+// A range image of the sphere |p| = radius seen from `sensor` (looking at the origin): a
+// grid of rays intersected with the sphere, depth noise of `noise` along each ray,
+// triangulated cell by cell and wound counter-clockwise seen from the sensor.
+TriangleMesh MakeSphereRangeView(const Vector3f& sensor, float radius, int n, float noise,
+                                 std::mt19937* random) {
+  const Vector3f forward = -sensor.normalized();
+  const Vector3f helper = std::abs(forward.y()) < 0.9f ? Vector3f::UnitY() : Vector3f::UnitX();
+  const Vector3f right = forward.cross(helper).normalized();
+  const Vector3f up = right.cross(forward);
+  const float half = std::tan(std::asin(radius / sensor.norm())) * 1.05f;
+  std::normal_distribution<float> gauss(0.0f, noise);
+  TriangleMesh mesh;
+  std::vector<std::int64_t> index(n * n, -1);
+  for (int row = 0; row < n; ++row) {
+    for (int col = 0; col < n; ++col) {
+      const float u = half * (2.0f * col / (n - 1) - 1), v = half * (1 - 2.0f * row / (n - 1));
+      const Vector3f ray = (forward + u * right + v * up).normalized();
+      const float b = sensor.dot(ray);
+      const float disc = b * b - (sensor.squaredNorm() - radius * radius);
+      if (disc <= 0) continue;
+      const float depth = -b - std::sqrt(disc);
+      index[row * n + col] = static_cast<std::int64_t>(mesh.positions.size());
+      mesh.positions.push_back(sensor + ray * (depth + gauss(*random)));
+    }
+  }
+  auto add = [&](int a, int b, int c) {
+    if (index[a] < 0 || index[b] < 0 || index[c] < 0) return;
+    Triangle t(index[a], index[b], index[c]);
+    const Vector3f& p = mesh.positions[t[0]];
+    const Vector3f normal = (mesh.positions[t[1]] - p).cross(mesh.positions[t[2]] - p);
+    if (normal.dot(sensor - p) < 0) std::swap(t[1], t[2]);
+    mesh.triangles.push_back(t);
+  };
+  for (int row = 0; row + 1 < n; ++row) {
+    for (int col = 0; col + 1 < n; ++col) {
+      const int a = row * n + col, b = a + 1, c = a + n, d = c + 1;
+      add(a, c, d);
+      add(a, d, b);
+    }
+  }
+  RemoveUnreferencedVertices(&mesh);
+  return mesh;
+}
+
+TEST(FuseRangeMeshesTest, ThreeViewsOfASphereGiveAClosedOutwardSphere) {
+  constexpr float kRadius = 0.2f;
+  std::mt19937 random(7);
+  std::vector<TriangleMesh> views;
+  std::vector<Vector3f> sensors;
+  for (int k = 0; k < 3; ++k) {
+    const float angle = 2.0943951f * k;
+    sensors.push_back(Vector3f(std::sin(angle), 0.3f, std::cos(angle)).normalized() * 0.7f);
+    views.push_back(MakeSphereRangeView(sensors.back(), kRadius, 90, 0.0005f, &random));
+  }
+  SurfaceFusionOptions options;
+  options.max_points = 15000;
+  int calls = 0;
+  auto fused = FuseRangeMeshes(views, options, [&calls](std::string_view, long, long) {
+    ++calls;
+    return true;
+  });
+  ASSERT_TRUE(fused.ok()) << fused.status().ToString();
+  EXPECT_GT(calls, 2);
+  EXPECT_GT(fused->vertex_count(), 500u);
+  EXPECT_TRUE(IsClosedAndOriented(*fused));
+  const double sphere_volume = 4.0 / 3.0 * M_PI * kRadius * kRadius * kRadius;
+  EXPECT_NEAR(SignedVolume(*fused), sphere_volume, 0.1 * sphere_volume);
+  ASSERT_EQ(fused->normals.size(), fused->vertex_count());
+  int observed = 0;
+  for (std::size_t v = 0; v < fused->vertex_count(); ++v) {
+    const Vector3f& p = fused->positions[v];
+    EXPECT_GT(fused->normals[v].dot(p.normalized()), 0.5f);  // outward
+    EXPECT_NEAR(p.norm(), kRadius, 0.02f);  // everywhere, holes included
+    bool seen = false;
+    for (const Vector3f& sensor : sensors) {
+      seen = seen || p.normalized().dot(sensor.normalized()) > std::cos(0.9f);
+    }
+    if (!seen) continue;
+    ++observed;
+    EXPECT_NEAR(p.norm(), kRadius, 0.002f) << p.transpose();
+  }
+  EXPECT_GT(observed, static_cast<int>(fused->vertex_count()) / 3);
+  // The same views give the same surface, vertex for vertex.
+  auto again = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(again.ok()) << again.status().ToString();
+  EXPECT_EQ(again->positions, fused->positions);
+  EXPECT_EQ(again->triangles, fused->triangles);
+}
+
+TEST(FuseRangeMeshesTest, InvalidInputFails) {
+  EXPECT_EQ(FuseRangeMeshes({}).status().code(), StatusCode::kInvalidArgument);
+  std::vector<TriangleMesh> tiny = {testing::MakeGridPlane(1.0f, 2)};
+  EXPECT_EQ(FuseRangeMeshes(tiny).status().code(), StatusCode::kInvalidArgument);
+  std::vector<TriangleMesh> flat = {testing::MakeGridPlane(1.0f, 20)};  // 441 points, planar
+  EXPECT_EQ(FuseRangeMeshes(flat).status().code(), StatusCode::kInvalidArgument);
+  std::vector<TriangleMesh> bad = {testing::MakeGridPlane(1.0f, 20)};
+  bad[0].triangles.emplace_back(0, 1, 100000);
+  EXPECT_FALSE(FuseRangeMeshes(bad).ok());
+  std::vector<TriangleMesh> views = {testing::MakeGridPlane(1.0f, 20)};
+  SurfaceFusionOptions options;
+  options.spacing = -1;
+  EXPECT_EQ(FuseRangeMeshes(views, options).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(FuseRangeMeshesTest, StanfordBunnyGivesOneClosedSurface) {
+  MESHVID_REQUIRE_SHARED_DATA();
+  auto capture = CaptureSequence::Open(shared_data + "/bunny-range/bun.conf");
+  ASSERT_TRUE(capture.ok()) << capture.status().ToString();
+  auto views = (*capture)->LoadFrame(0);
+  ASSERT_TRUE(views.ok()) << views.status().ToString();
+  ASSERT_EQ(views->size(), 10u);
+  SurfaceFusionOptions options;
+  options.max_points = 20000;
+  auto fused = FuseRangeMeshes(*views, options);
+  ASSERT_TRUE(fused.ok()) << fused.status().ToString();
+  EXPECT_TRUE(IsClosedAndOriented(*fused));
+  EXPECT_GT(SignedVolume(*fused), 0);
+  EXPECT_GT(fused->vertex_count(), 1000u);
+  EXPECT_LT(fused->vertex_count(), 200000u);
+  // The bunny is about 0.15 x 0.15 x 0.12 m; the surface stays near the scans' box.
+  Eigen::AlignedBox3f scans;
+  for (const TriangleMesh& view : *views) scans.extend(BoundingBox(view));
+  const Eigen::AlignedBox3f box = BoundingBox(*fused);
+  EXPECT_TRUE(scans.sizes().isApprox(box.sizes(), 0.1f))
+      << scans.sizes().transpose() << " vs " << box.sizes().transpose();
+}
+
+}  // namespace
+}  // namespace meshvid

@@ -77,6 +77,19 @@ TEST(MotionTest, ModelRoundTripsWithWeightsSummingToOne) {
     EXPECT_NEAR(sum, 1.0f, 1e-6f);
   }
   EXPECT_EQ(DecodeMotionModel(*payload, 499).status().code(), StatusCode::kCorrupt);
+  EXPECT_TRUE(decoded->model.surface_triangles.empty());
+}
+
+TEST(MotionTest, SurfaceMaskRoundTripsAndMustMatchTheBase) {
+  MotionModel model = SingleSegmentModel(10);
+  model.surface_triangles = {1, 0, 0, 1, 1, 1, 0, 1, 0, 0, 1};  // 11 triangles: 2 bytes
+  auto payload = EncodeMotionModel(model, MotionQuantization{});
+  ASSERT_TRUE(payload.ok()) << payload.status().ToString();
+  auto decoded = DecodeMotionModel(*payload, 10, 11);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  EXPECT_EQ(decoded->model.surface_triangles, model.surface_triangles);
+  // A mask for another base mesh is corrupt input.
+  EXPECT_EQ(DecodeMotionModel(*payload, 10, 12).status().code(), StatusCode::kCorrupt);
 }
 
 TEST(MotionTest, TransformsRoundTripWithinTheStatedSteps) {

@@ -45,6 +45,9 @@ struct VertexBlend {
 struct MotionModel {
   std::uint32_t segment_count = 0;
   std::vector<VertexBlend> blends;  ///< one per base vertex
+  /// Per base triangle: 1 if it is part of the captured surface, 0 if hidden (no view ever
+  /// saw it: a decoder leaves out its triangles at every level). Empty: all are surface.
+  std::vector<std::uint8_t> surface_triangles;
 };
 
 /// Checks counts, segment indices, weights in [0, 1] summing to 1 (within 1e-3).

@@ -10,7 +10,9 @@
 namespace meshvid {
 namespace {
 
-constexpr std::uint8_t kMotionVersion = 1;
+/// Versions this decoder reads: 1 (no surface mask), 2 (with one).
+constexpr std::uint8_t kMotionVersionMin = 1;
+constexpr std::uint8_t kMotionVersionMax = 2;
 /// Bytes of one vertex blend in the raw MOTN body: count + 4 x (u32 segment, u16 weight).
 constexpr std::size_t kBlendBytes = 1 + kMaxInfluences * 6;
 /// Bytes of one transform in the raw transform body: 6 zig-zag u32.
@@ -40,12 +42,12 @@ RigidTransform DequantizeTransform(const QuantizedTransform& q,
 }
 
 StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
-                                          std::size_t vertex_count) {
+                                          std::size_t vertex_count, std::size_t triangle_count) {
   ByteReader reader(payload, "motion (MOTN)");
   MESHVID_ASSIGN_OR_RETURN(const std::uint8_t version, reader.ReadU8("motion_version"));
-  if (version != kMotionVersion) {
+  if (version < kMotionVersionMin || version > kMotionVersionMax) {
     return UnsupportedError("motion (MOTN): version " + std::to_string(version) +
-                            " is not supported (this decoder reads version 1)");
+                            " is not supported (this decoder reads versions 1 and 2)");
   }
   DecodedMotion result;
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t rotation_bits, reader.ReadU32("rotation_step"));
@@ -68,10 +70,20 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
     return reader.Error("segment_count " + std::to_string(result.model.segment_count) +
                         " is not in 1..vertex_count");
   }
+  std::uint32_t mask_triangles = 0;
+  if (version >= 2) {
+    MESHVID_ASSIGN_OR_RETURN(mask_triangles, reader.ReadU32("mask_triangle_count"));
+    if (mask_triangles != 0 && mask_triangles != triangle_count) {
+      return reader.Error("mask_triangle_count " + std::to_string(mask_triangles) +
+                          " differs from the base mesh's " + std::to_string(triangle_count) +
+                          " triangles");
+    }
+  }
+  const std::size_t mask_bytes = (std::size_t(mask_triangles) + 7) / 8;
   MESHVID_ASSIGN_OR_RETURN(
       const std::vector<std::uint8_t> body,
-      DecompressBlock(payload.subspan(reader.position()), vertex_count * kBlendBytes,
-                      "motion (MOTN) blend weights"));
+      DecompressBlock(payload.subspan(reader.position()),
+                      vertex_count * kBlendBytes + mask_bytes, "motion (MOTN) blend weights"));
   ByteReader blends(body, "motion (MOTN) blend weights");
   result.model.blends.resize(vertex_count);
   for (std::size_t v = 0; v < vertex_count; ++v) {
@@ -91,6 +103,10 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
       blend.influences[i] = {segment, w};
       remaining -= w;
     }
+  }
+  result.model.surface_triangles.resize(mask_triangles);
+  for (std::size_t t = 0; t < mask_triangles; ++t) {
+    result.model.surface_triangles[t] = (body[vertex_count * kBlendBytes + t / 8] >> (t % 8)) & 1;
   }
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(result.model, vertex_count));
   return result;

@@ -36,9 +36,11 @@ struct DecodedMotion {
   MotionQuantization quantization;
 };
 
-/// Decodes a MOTN payload for a base mesh of `vertex_count` vertices.
+/// Decodes a MOTN payload (version 1 or 2) for a base mesh of `vertex_count` vertices and
+/// `triangle_count` triangles.
 StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
-                                          std::size_t vertex_count);
+                                          std::size_t vertex_count,
+                                          std::size_t triangle_count = 0);
 
 /// Decodes one group's transforms: result[frame][segment]. The group must hold
 /// `frame_count` frames of `segment_count` segments (as the container and MOTN say).

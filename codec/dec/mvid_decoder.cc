@@ -155,7 +155,8 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
   info.metadata_json = header.metadata_json;
   MESHVID_ASSIGN_OR_RETURN(base_, DecodeBaseMesh(base_bytes));
   MESHVID_ASSIGN_OR_RETURN(DecodedMotion motion,
-                           DecodeMotionModel(motion_bytes, base_.vertex_count()));
+                           DecodeMotionModel(motion_bytes, base_.vertex_count(),
+                                             base_.triangle_count()));
   motion_ = std::move(motion.model);
   quantization_ = motion.quantization;
   MESHVID_ASSIGN_OR_RETURN(subdivision_, RegularSubdivision::Create(base_, info.levels));
@@ -166,7 +167,7 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
   info.motion_bytes = motion_bytes.size();
   for (int level = 0; level <= info.levels; ++level) {
     info.vertices_per_level.push_back(subdivision_.sample_count(level));
-    info.triangles_per_level.push_back(base_.triangle_count() << (2 * level));
+    info.triangles_per_level.push_back(SurfaceTriangleCount() << (2 * level));
   }
   triangles_.resize(info.levels + 1);
   return Status::Ok();
@@ -195,9 +196,30 @@ Status MvidDecoder::CheckLevel(int level) const {
   return Status::Ok();
 }
 
+std::size_t MvidDecoder::SurfaceTriangleCount() const {
+  if (motion_.surface_triangles.empty()) return base_.triangle_count();
+  std::size_t count = 0;
+  for (std::uint8_t kept : motion_.surface_triangles) count += kept != 0;
+  return count;
+}
+
 StatusOr<const std::vector<Triangle>*> MvidDecoder::Triangles(int level) {
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
-  if (triangles_[level].empty()) triangles_[level] = subdivision_.Triangles(level);
+  if (triangles_[level].empty()) {
+    triangles_[level] = subdivision_.Triangles(level);
+    if (!motion_.surface_triangles.empty()) {
+      // Level l has 4^l triangles per base triangle, base triangle by base triangle.
+      const std::size_t per_base = std::size_t(1) << (2 * level);
+      std::size_t kept = 0;
+      for (std::size_t t = 0; t < motion_.surface_triangles.size(); ++t) {
+        if (!motion_.surface_triangles[t]) continue;
+        for (std::size_t k = 0; k < per_base; ++k) {
+          triangles_[level][kept++] = triangles_[level][t * per_base + k];
+        }
+      }
+      triangles_[level].resize(kept);
+    }
+  }
   return &triangles_[level];
 }
 

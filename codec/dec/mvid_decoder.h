@@ -115,6 +115,8 @@ class MvidDecoder {
   RegularSubdivision subdivision_;
   std::map<DisplacementPacking, DisplacementLayout> layouts_;
   std::vector<std::vector<Triangle>> triangles_;  ///< per level, filled on first use
+  /// Base triangles that are surface (all unless MOTN's mask hides some).
+  std::size_t SurfaceTriangleCount() const;
   std::unique_ptr<Group> group_;                  ///< the decoded group in use
   // Scratch buffers reused across frames.
   std::vector<Eigen::Vector3f> posed_, normals_, origins_, directions_;

@@ -12,7 +12,7 @@
 namespace meshvid {
 namespace {
 
-constexpr std::uint8_t kMotionVersion = 1;
+constexpr std::uint8_t kMotionVersion = 2;
 
 std::uint32_t ZigZagDelta(std::int32_t from, std::int32_t to) {
   const auto delta = static_cast<std::int32_t>(static_cast<std::uint32_t>(to) -
@@ -61,6 +61,7 @@ StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
   header.PutU32(std::bit_cast<std::uint32_t>(quantization.translation_step));
   header.PutU32(model.segment_count);
   header.PutU32(static_cast<std::uint32_t>(model.blends.size()));
+  header.PutU32(static_cast<std::uint32_t>(model.surface_triangles.size()));
   ByteWriter body;
   for (const VertexBlend& blend : model.blends) {
     body.PutU8(blend.count);
@@ -72,6 +73,12 @@ StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
                        : 0);
     }
   }
+  // The surface mask, one bit per base triangle, least significant bit first.
+  std::vector<std::uint8_t> mask((model.surface_triangles.size() + 7) / 8, 0);
+  for (std::size_t t = 0; t < model.surface_triangles.size(); ++t) {
+    if (model.surface_triangles[t]) mask[t / 8] |= std::uint8_t(1u << (t % 8));
+  }
+  for (std::uint8_t byte : mask) body.PutU8(byte);
   std::vector<std::uint8_t> payload = header.Release();
   const std::vector<std::uint8_t> compressed = CompressBlock(body.bytes());
   payload.insert(payload.end(), compressed.begin(), compressed.end());

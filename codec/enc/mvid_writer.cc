@@ -24,6 +24,13 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
     return InvalidArgumentError("frame rate must be in (0, 1000]");
   }
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(motion, base.vertex_count()));
+  if (!motion.surface_triangles.empty() &&
+      motion.surface_triangles.size() != base.triangle_count()) {
+    return InvalidArgumentError("the surface mask has " +
+                                std::to_string(motion.surface_triangles.size()) +
+                                " entries for a base mesh of " +
+                                std::to_string(base.triangle_count()) + " triangles");
+  }
   std::unique_ptr<MvidWriter> writer(new MvidWriter());
   writer->settings_ = settings;
   writer->motion_ = motion;

@@ -42,18 +42,17 @@ struct EncoderOptions {
 
   // --- correspondence (method.md 5.1)
   double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy
-  double max_distance = 0;        ///< farthest correspondence along a normal (0: 3%)
+  double max_distance = 0;        ///< farthest correspondence along a normal (0: 8%)
   double max_angle_degrees = 60;  ///< largest angle between base normal and data normal
 
   // --- segmentation (method.md 5.2-5.4)
   double tolerance = 0;          ///< UserTol of eq. 6 (0: 0.5% of the diagonal)
   double initial_tolerance_factor = 3;  ///< the search starts at this x tolerance
   double tolerance_shrink = 0.8;        ///< factor applied to the tolerance per step
-  int min_segment_vertices = 3;  ///< smaller pieces end the segmentation
+  int min_segment_vertices = 12; ///< smaller pieces end the segmentation (>= 3)
   int max_segments = 64;         ///< most segments
   int occlusion_frames = 5;      ///< frames a vertex may miss and stay in its segment
   int icp_iterations = 3;        ///< rigid solves per tolerance step and frame
-  int key_frames = 0;            ///< frames the segmentation looks at (0: all, up to window)
   int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
 
   // --- detail (method.md section 6)
@@ -66,7 +65,11 @@ struct EncoderOptions {
   int quality = 60;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
-  int window = 64;               ///< most capture frames held in memory at once
+  /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one
+  /// full-resolution frame and one group of displacement frames are held besides). Longer
+  /// captures are segmented on `window` frames spread evenly over them, and every frame is
+  /// then tracked with the segments found.
+  int window = 256;
   int first_frame = 0;           ///< frames [first_frame, end_frame) are encoded
   int end_frame = -1;            ///< -1: to the end
   std::string metadata_json = "{}";
@@ -83,6 +86,7 @@ struct EncodeSummary {
   std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
   int segments = 0;
   double registered_share = 0;  ///< base vertices that joined a segment
+  double surface_share = 0;     ///< base triangles seen by some view (the rest are hidden)
   double filled_share = 0;      ///< displacement samples filled by interpolation
   double hit_share = 0;         ///< samples with a fused measurement
   double frame_rate = 25.0;

@@ -1,0 +1,130 @@
+#include "codec/enc/motion_blend.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "codec/enc/segmentation.h"
+
+namespace meshvid {
+namespace {
+
+/// Keeps the largest kMaxInfluences entries of a dense weight row, renormalised.
+VertexBlend TopInfluences(std::span<const float> weights) {
+  std::vector<std::uint32_t> order(weights.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const std::size_t keep = std::min<std::size_t>(kMaxInfluences, order.size());
+  std::partial_sort(order.begin(), order.begin() + keep, order.end(),
+                    [&](std::uint32_t a, std::uint32_t b) { return weights[a] > weights[b]; });
+  VertexBlend blend;
+  float total = 0;
+  for (std::size_t k = 0; k < keep && weights[order[k]] > 1e-4f; ++k) total += weights[order[k]];
+  for (std::size_t k = 0; k < keep && weights[order[k]] > 1e-4f; ++k) {
+    blend.influences[blend.count++] = {order[k], weights[order[k]] / total};
+  }
+  return blend;
+}
+
+}  // namespace
+
+MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
+                                   int segment_count, int smoothing) {
+  const std::size_t n = base.vertex_count();
+  const std::size_t s = static_cast<std::size_t>(std::max(1, segment_count));
+  const auto neighbours = VertexNeighbours(base);
+  std::vector<float> weights(n * s, 0.0f);
+  std::vector<char> known(n, 0), registered(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (labels[v] >= 0 && labels[v] < segment_count) {
+      weights[v * s + labels[v]] = 1;
+      known[v] = registered[v] = 1;
+    }
+  }
+  // Spread outwards ring by ring: each new vertex averages its known neighbours.
+  std::vector<std::size_t> frontier;
+  for (;;) {
+    frontier.clear();
+    for (std::size_t v = 0; v < n; ++v) {
+      if (known[v]) continue;
+      for (std::uint32_t w : neighbours[v]) {
+        if (known[w]) {
+          frontier.push_back(v);
+          break;
+        }
+      }
+    }
+    if (frontier.empty()) break;
+    for (std::size_t v : frontier) {
+      int count = 0;
+      for (std::uint32_t w : neighbours[v]) {
+        if (!known[w]) continue;
+        for (std::size_t k = 0; k < s; ++k) weights[v * s + k] += weights[w * s + k];
+        ++count;
+      }
+      for (std::size_t k = 0; k < s; ++k) weights[v * s + k] /= float(count);
+    }
+    for (std::size_t v : frontier) known[v] = 1;
+  }
+  // Jacobi smoothing of the interpolated weights, registered vertices fixed.
+  std::vector<float> next = weights;
+  for (int pass = 0; pass < smoothing; ++pass) {
+    for (std::size_t v = 0; v < n; ++v) {
+      if (registered[v] || !known[v] || neighbours[v].empty()) continue;
+      for (std::size_t k = 0; k < s; ++k) next[v * s + k] = 0;
+      int count = 0;
+      for (std::uint32_t w : neighbours[v]) {
+        if (!known[w]) continue;
+        for (std::size_t k = 0; k < s; ++k) next[v * s + k] += weights[w * s + k];
+        ++count;
+      }
+      for (std::size_t k = 0; k < s; ++k) next[v * s + k] /= float(std::max(count, 1));
+    }
+    weights.swap(next);
+    next = weights;
+  }
+  // Pieces with no registered vertex: the nearest registered vertex's segment.
+  for (std::size_t v = 0; v < n; ++v) {
+    if (known[v]) continue;
+    float best = std::numeric_limits<float>::infinity();
+    std::int32_t segment = 0;
+    for (std::size_t w = 0; w < n; ++w) {
+      if (!registered[w]) continue;
+      const float d = (base.positions[v] - base.positions[w]).squaredNorm();
+      if (d < best) best = d, segment = labels[w];
+    }
+    weights[v * s + segment] = 1;
+  }
+  MotionModel model;
+  model.segment_count = static_cast<std::uint32_t>(s);
+  model.blends.resize(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    model.blends[v] = TopInfluences(std::span<const float>(weights).subspan(v * s, s));
+  }
+  return model;
+}
+
+void SmoothTracks(int passes, std::vector<std::vector<RigidTransform>>* transforms) {
+  const std::size_t frames = transforms->size();
+  if (frames < 3) return;
+  for (int pass = 0; pass < passes; ++pass) {
+    std::vector<std::vector<RigidTransform>> next = *transforms;
+    for (std::size_t t = 1; t + 1 < frames; ++t) {
+      for (std::size_t s = 0; s < (*transforms)[t].size(); ++s) {
+        const RigidTransform& centre = (*transforms)[t][s];
+        Eigen::Vector4f q = centre.rotation.coeffs();
+        Eigen::Vector3f translation = centre.translation;
+        for (std::size_t u : {t - 1, t + 1}) {
+          const RigidTransform& other = (*transforms)[u][s];
+          const Eigen::Vector4f c = other.rotation.coeffs();
+          q += c.dot(centre.rotation.coeffs()) < 0 ? Eigen::Vector4f(-c) : c;
+          translation += other.translation;
+        }
+        next[t][s].rotation = Eigen::Quaternionf(q.normalized());
+        next[t][s].translation = translation / 3.0f;
+      }
+    }
+    transforms->swap(next);
+  }
+}
+
+}  // namespace meshvid

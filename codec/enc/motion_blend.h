@@ -1,0 +1,32 @@
+// Motion for every base vertex (method.md 5.4, post-processing): vertices the segmentation
+// left unregistered get blend weights over the segments of their registered neighbours (the
+// paper's spatial interpolation of transforms, stated as skinning), and the tracks are
+// smoothed over time.
+#ifndef MESHVID_CODEC_ENC_MOTION_BLEND_H_
+#define MESHVID_CODEC_ENC_MOTION_BLEND_H_
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/common/mesh.h"
+#include "codec/common/motion.h"
+
+namespace meshvid {
+
+/// Blend weights from a segmentation: a registered vertex has its segment with weight 1; an
+/// unregistered one averages the weights of its mesh neighbours, spreading outwards from the
+/// registered vertices (then `smoothing` Jacobi passes over the unregistered ones), keeping
+/// the kMaxInfluences largest weights. Vertices in pieces of the mesh without any registered
+/// vertex take the segment of the nearest registered vertex in space.
+MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
+                                   int segment_count, int smoothing = 4);
+
+/// Smooths tracks `transforms[frame][segment]` over time: `passes` times, each frame's
+/// transform becomes the average of frames t-1, t, t+1 (rotations as normalised quaternion
+/// sums, signs aligned).
+void SmoothTracks(int passes, std::vector<std::vector<RigidTransform>>* transforms);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_MOTION_BLEND_H_

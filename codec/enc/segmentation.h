@@ -1,0 +1,67 @@
+// The multi-frame piecewise-rigid segmentation of method.md section 5: base vertices are
+// grouped into segments, each following one rigid transform per frame, found jointly over the
+// frames (eq. 5) on the vertices whose correspondences agree within a tolerance (eq. 6).
+#ifndef MESHVID_CODEC_ENC_SEGMENTATION_H_
+#define MESHVID_CODEC_ENC_SEGMENTATION_H_
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "codec/common/mesh.h"
+#include "codec/common/motion.h"
+#include "codec/common/progress.h"
+#include "codec/enc/normal_shooting.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// The constants of the segmentation (every one an encoder option).
+struct SegmentationOptions {
+  float tolerance = 0.01f;              ///< UserTol of eq. 6, scene units
+  float initial_tolerance_factor = 3;   ///< each window starts at this x tolerance
+  float tolerance_shrink = 0.8f;        ///< per step, until the tolerance is reached
+  int min_segment_vertices = 3;         ///< eq. 5 needs at least 3 points
+  int max_segments = 64;
+  int occlusion_frames = 5;             ///< frames a member may fail eq. 6 (t_occ)
+  int icp_iterations = 3;               ///< correspondence + solve rounds per step
+  ShotLimits shot;                      ///< correspondence search (method.md 5.1)
+};
+
+/// Correspondence targets: one per frame (the decimated views of that frame, appended).
+using FrameTargets = std::span<const ShootingTarget* const>;
+
+/// Marks a vertex that joined no segment.
+inline constexpr std::int32_t kUnregistered = -1;
+
+/// A segmentation and the segments' transforms over the frames it looked at.
+struct Segmentation {
+  std::vector<std::int32_t> labels;  ///< per base vertex: segment or kUnregistered
+  int segment_count = 0;
+  /// transforms[frame][segment], frame = index into the targets it was computed on.
+  std::vector<std::vector<RigidTransform>> transforms;
+};
+
+/// Segments `base` (posed as in frame 0 of `targets`, i.e. fitted to it) over every frame of
+/// `targets` (null entries are frames without data). Reports progress per segment attempt.
+StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTargets targets,
+                                             const SegmentationOptions& options,
+                                             const ProgressCallback& progress = {});
+
+/// Tracks fixed segments through one more frame: starting from `initial[segment]`, solves each
+/// segment's transform on its members' correspondences in `target` (a few ICP rounds at
+/// the tolerance). A segment with fewer than 3 correspondences keeps its initial transform.
+std::vector<RigidTransform> TrackSegments(const TriangleMesh& base,
+                                          std::span<const std::int32_t> labels,
+                                          int segment_count, const ShootingTarget& target,
+                                          std::span<const RigidTransform> initial,
+                                          const SegmentationOptions& options);
+
+/// Per base vertex, the triangles' vertex adjacency (sorted, unique neighbours).
+std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mesh);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_SEGMENTATION_H_

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   meshvid::cli::AddSimulateCommand(app, &exit_code);
   meshvid::cli::AddEvalCommand(app, &exit_code);
   meshvid::cli::AddInfoCommand(app, &exit_code);
+  meshvid::cli::AddEncodeCommand(app, &exit_code);
+  meshvid::cli::AddBenchCommand(app, &exit_code);
   meshvid::cli::AddDecodeCommand(app, &exit_code);
   try {
     app.parse(argc, argv);

@@ -27,6 +27,15 @@ void ProgressBar::Finish() {
   drawn_ = false;
 }
 
+void ProgressBar::Message(std::string_view line) {
+  if (quiet_) return;
+  if (drawn_ && tty_) std::fputs("\r\033[K", stderr);
+  drawn_ = false;
+  std::fprintf(stderr, "%.*s\n", static_cast<int>(line.size()), line.data());
+  last_draw_ = {};  // redraw the bar at the next update
+  std::fflush(stderr);
+}
+
 void ProgressBar::Draw(std::string_view stage, long done, long total) {
   if (quiet_) return;
   const auto now = std::chrono::steady_clock::now();
@@ -55,8 +64,8 @@ void ProgressBar::Draw(std::string_view stage, long done, long total) {
                  eta);
     drawn_ = true;
   } else {
-    std::fprintf(stderr, "%.*s: %ld/%ld (%.1f/s)\n", static_cast<int>(stage_.size()),
-                 stage_.data(), done, total, rate);
+    std::fprintf(stderr, "%.*s: %ld/%ld (%.1f/s)\n", static_cast<int>(stage_.size()), stage_.data(),
+                 done, total, rate);
   }
   std::fflush(stderr);
 }

@@ -24,6 +24,9 @@ class ProgressBar {
   ProgressCallback Callback();
   /// Ends the current line, if a bar is drawn.
   void Finish();
+  /// Prints `line` on stderr above the bar (a terminal's bar is erased and redrawn at the
+  /// next update), unless quiet.
+  void Message(std::string_view line);
 
  private:
   void Draw(std::string_view stage, long done, long total);

@@ -1,0 +1,108 @@
+// A small fake set of bench records for the bench_* tests: a baseline of four Draco points
+// and meshvid HEVC at exactly half the baseline's rate at every PSNR, plus one lossless point
+// and a failed step.
+#ifndef MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
+#define MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "tools/bench/bench_record.h"
+
+namespace meshvid::testing {
+
+/// The record "fake-3-arc": baseline bits 8..14 at 30..45 dB; HEVC q20..q80 at level 1
+/// with half the rate at the same PSNRs (BD-rate -50%), at level 0 with a PSNR range that
+/// does not overlap; FFV1 lossless at PSNR inf; one failed AV1 encode.
+inline BenchRecord FakeRecord() {
+  BenchRecord r;
+  r.sequence = "fake";
+  r.ground_truth = "scene:fake";
+  r.rig = "3-arc";
+  r.views = 3;
+  r.layout = "arc";
+  r.frames = 10;
+  r.frame_rate = 25;
+  r.eval_samples = 50000;
+  r.capture = "work/fake-3-arc/capture/manifest.json";
+  r.reference = "work/fake-3-arc/capture/ground_truth.obj";
+  r.date = "2026-11-22T10:00:00Z";
+  r.run_key = "gt=scene:fake;frames=10";
+  r.machine = {"Test CPU @ 2.7GHz", 2, 24.0, "Linux 6.1 x86_64"};
+  r.simulate_ok = true;
+  r.simulate_command = "meshvid simulate scene:fake -o work/fake-3-arc/capture --views 3 -q";
+  r.simulate_cost = {1.5, 2.5, 95};
+  r.baseline_ok = true;
+  r.baseline_command = "meshvid bench-baseline work/fake-3-arc/capture/manifest.json -o b -q";
+  r.baseline_cost = {30, 31, 250};
+  r.baseline_fuse_seconds = 25;
+  r.bench_process_peak_mb = 21;
+  const double psnrs[] = {30, 35, 40, 45};
+  for (int i = 0; i < 4; ++i) {
+    BenchPoint p;
+    p.method = kMethodBaseline;
+    p.codec = "draco";
+    p.quality = 8 + 2 * i;
+    p.ok = true;
+    p.frames = 10;
+    p.bytes_per_frame = 100000.0 * (1 << i);
+    p.mbit_per_s = p.bytes_per_frame * 8 * 25 / 1e6;
+    p.d1_psnr = psnrs[i];
+    p.d2_psnr = psnrs[i] + 3;
+    p.accuracy_rms = 0.002;
+    p.completeness_rms = 0.004;
+    p.coverage = 0.9;
+    p.decode_fps = 30;
+    p.encode_fps = 0.4;
+    p.encode_peak_mb = p.decode_peak_mb = 250;
+    p.commands = {r.baseline_command};
+    r.points.push_back(p);
+
+    BenchPoint m = p;
+    m.method = kMethodMeshvid;
+    m.codec = "hevc";
+    m.quality = 20 + 20 * i;
+    m.level = 1;
+    m.bytes_per_frame = p.bytes_per_frame / 2;
+    m.mbit_per_s = p.mbit_per_s / 2;
+    m.coverage = 0.95;
+    m.decode_fps = 600;
+    m.encode_fps = 5;
+    m.encode_peak_mb = 400;
+    m.decode_peak_mb = 60;
+    m.commands = {
+        "meshvid encode c -o hevc-q" + std::to_string(m.quality) + ".mvid -q",
+        "meshvid decode hevc-q" + std::to_string(m.quality) + ".mvid --level 1 --no-write -q"};
+    r.points.push_back(m);
+    m.level = 0;
+    m.d1_psnr = 20 + i;  // below every baseline point: no overlap
+    m.decode_fps = 2000;
+    r.points.push_back(m);
+  }
+  BenchPoint lossless;
+  lossless.method = kMethodMeshvid;
+  lossless.codec = "ffv1";
+  lossless.quality = 100;
+  lossless.level = 1;
+  lossless.ok = true;
+  lossless.bytes_per_frame = 900000;
+  lossless.mbit_per_s = 180;
+  lossless.d1_psnr = std::numeric_limits<double>::infinity();
+  lossless.d2_psnr = 70;
+  lossless.coverage = 0.96;
+  r.points.push_back(lossless);
+  BenchEncode failed;
+  failed.method = kMethodMeshvid;
+  failed.codec = "av1";
+  failed.quality = 40;
+  failed.error = "encode: exit code 1: out of cheese";
+  failed.command = "meshvid encode c -o av1-q40.mvid --codec av1 -q";
+  r.encodes.push_back(failed);
+  ComputeBdRates(r);
+  return r;
+}
+
+}  // namespace meshvid::testing
+
+#endif  // MESHVID_TESTS_BENCH_FAKE_RECORDS_H_

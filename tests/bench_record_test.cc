@@ -1,0 +1,156 @@
+// Bench records (tools/bench/bench_record.h): JSON round trip, files, BD-rate per curve.
+#include "tools/bench/bench_record.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "tests/bench_fake_records.h"
+#include "tests/test_util.h"
+
+namespace meshvid {
+namespace {
+
+void ExpectSamePoint(const BenchPoint& a, const BenchPoint& b) {
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(a.codec, b.codec);
+  EXPECT_EQ(a.quality, b.quality);
+  EXPECT_EQ(a.level, b.level);
+  EXPECT_EQ(a.ok, b.ok);
+  EXPECT_EQ(a.error, b.error);
+  EXPECT_EQ(a.frames, b.frames);
+  EXPECT_DOUBLE_EQ(a.bytes_per_frame, b.bytes_per_frame);
+  EXPECT_DOUBLE_EQ(a.mbit_per_s, b.mbit_per_s);
+  EXPECT_EQ(a.d1_psnr, b.d1_psnr);  // also +inf
+  EXPECT_DOUBLE_EQ(a.d2_psnr, b.d2_psnr);
+  EXPECT_DOUBLE_EQ(a.accuracy_rms, b.accuracy_rms);
+  EXPECT_DOUBLE_EQ(a.completeness_rms, b.completeness_rms);
+  EXPECT_DOUBLE_EQ(a.coverage, b.coverage);
+  EXPECT_DOUBLE_EQ(a.encode_fps, b.encode_fps);
+  EXPECT_DOUBLE_EQ(a.decode_fps, b.decode_fps);
+  EXPECT_DOUBLE_EQ(a.encode_peak_mb, b.encode_peak_mb);
+  EXPECT_DOUBLE_EQ(a.decode_peak_mb, b.decode_peak_mb);
+  EXPECT_EQ(a.commands, b.commands);
+}
+
+TEST(BenchRecordTest, JsonRoundTripKeepsEverything) {
+  const BenchRecord record = testing::FakeRecord();
+  const std::string text = BenchRecordToJson(record);
+  EXPECT_NE(text.find("\"d1_psnr\": \"inf\""), std::string::npos);
+  auto parsed = ParseBenchRecord(text, "fake.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  EXPECT_EQ(parsed->sequence, "fake");
+  EXPECT_EQ(parsed->rig, "3-arc");
+  EXPECT_EQ(parsed->views, 3);
+  EXPECT_EQ(parsed->frames, 10);
+  EXPECT_EQ(parsed->run_key, record.run_key);
+  EXPECT_EQ(parsed->machine.cpu_model, "Test CPU @ 2.7GHz");
+  EXPECT_EQ(parsed->machine.cores, 2);
+  EXPECT_DOUBLE_EQ(parsed->simulate_cost.peak_rss_mb, 95);
+  EXPECT_DOUBLE_EQ(parsed->baseline_fuse_seconds, 25);
+  EXPECT_DOUBLE_EQ(parsed->bench_process_peak_mb, 21);
+  EXPECT_EQ(parsed->baseline_command, record.baseline_command);
+  ASSERT_EQ(parsed->points.size(), record.points.size());
+  for (std::size_t i = 0; i < record.points.size(); ++i) {
+    ExpectSamePoint(parsed->points[i], record.points[i]);
+  }
+  ASSERT_EQ(parsed->encodes.size(), 1u);
+  EXPECT_FALSE(parsed->encodes[0].ok);
+  EXPECT_EQ(parsed->encodes[0].error, "encode: exit code 1: out of cheese");
+  ASSERT_EQ(parsed->bd_rates.size(), record.bd_rates.size());
+  // Writing the parsed record again gives the same text.
+  EXPECT_EQ(BenchRecordToJson(*parsed), text);
+}
+
+TEST(BenchRecordTest, BdRatesPerCodecAndLevelAgainstTheBaseline) {
+  const BenchRecord record = testing::FakeRecord();
+  // HEVC levels 0 and 1; FFV1 has one point (no curve).
+  ASSERT_EQ(record.bd_rates.size(), 2u);
+  const BdRateEntry& level0 = record.bd_rates[0];
+  const BdRateEntry& level1 = record.bd_rates[1];
+  EXPECT_EQ(level0.codec, "hevc");
+  EXPECT_EQ(level0.level, 0);
+  EXPECT_FALSE(level0.ok);
+  EXPECT_NE(level0.note.find("do not overlap"), std::string::npos) << level0.note;
+  // Level 0 peaks at 23 dB, 7 dB under the baseline's lowest (30 dB), at 400 kB against 100 kB.
+  EXPECT_NE(level0.note.find("meshvid's best point is 7.0 dB below the baseline's lowest, with 4x "
+                             "its bytes per frame"),
+            std::string::npos)
+      << level0.note;
+  EXPECT_EQ(level1.level, 1);
+  ASSERT_TRUE(level1.ok) << level1.note;
+  EXPECT_NEAR(level1.delta, -0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(level1.psnr_low, 30);
+  EXPECT_DOUBLE_EQ(level1.psnr_high, 45);
+}
+
+TEST(BenchRecordTest, FilesAreWrittenAtomicallyAndOtherJsonIsSkipped) {
+  testing::TempDir dir;
+  BenchRecord record = testing::FakeRecord();
+  ASSERT_TRUE(WriteBenchRecord(record, dir.File("fake-3-arc.json")).ok());
+  EXPECT_FALSE(std::filesystem::exists(dir.File("fake-3-arc.json.partial")));
+  record.sequence = "another";
+  ASSERT_TRUE(WriteBenchRecord(record, dir.File("another-3-arc.json")).ok());
+  // A Google Benchmark result beside the records is not one of them.
+  testing::WriteFile(dir.File("decode.json"), "{\"context\": {}, \"benchmarks\": []}");
+  testing::WriteFile(dir.File("notes.txt"), "not json");
+  auto records = ReadBenchRecords(dir.path());
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  ASSERT_EQ(records->size(), 2u);
+  EXPECT_EQ((*records)[0].sequence, "another");
+  EXPECT_EQ((*records)[1].sequence, "fake");
+
+  testing::WriteFile(dir.File("broken.json"),
+                     "{\"format\": \"meshvid-bench-record/1\", \"points\": 7");
+  records = ReadBenchRecords(dir.path());
+  ASSERT_FALSE(records.ok());
+  EXPECT_NE(records.status().message().find("broken.json"), std::string::npos);
+  EXPECT_FALSE(WriteBenchRecord(record, dir.File("missing/x.json")).ok());
+}
+
+TEST(BenchRecordTest, ParseRejectsWhatIsNotARecord) {
+  auto bad = ParseBenchRecord("[1, 2", "a.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kCorrupt);
+  bad = ParseBenchRecord("{\"format\": \"something-else\"}", "b.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kUnsupported);
+  bad = ParseBenchRecord(
+      "{\"format\": \"meshvid-bench-record/1\", \"points\": [{\"d1_psnr\": \"loud\"}]}", "c.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kCorrupt);
+  EXPECT_NE(bad.status().message().find("d1_psnr"), std::string::npos);
+}
+
+TEST(BenchRecordTest, UpsertReplacesTheSamePoint) {
+  BenchRecord record;
+  BenchPoint p;
+  p.method = kMethodMeshvid;
+  p.codec = "av1";
+  p.quality = 40;
+  p.level = 2;
+  p.error = "first try";
+  UpsertPoint(record, p);
+  p.ok = true;
+  p.error.clear();
+  UpsertPoint(record, p);
+  p.level = 1;
+  UpsertPoint(record, p);
+  ASSERT_EQ(record.points.size(), 2u);
+  ASSERT_NE(FindPoint(record, kMethodMeshvid, "av1", 40, 2), nullptr);
+  EXPECT_TRUE(FindPoint(record, kMethodMeshvid, "av1", 40, 2)->ok);
+  EXPECT_EQ(FindPoint(record, kMethodMeshvid, "av1", 40, 3), nullptr);
+  BenchEncode e;
+  e.method = kMethodMeshvid;
+  e.codec = "av1";
+  e.quality = 40;
+  UpsertEncode(record, e);
+  e.ok = true;
+  UpsertEncode(record, e);
+  ASSERT_EQ(record.encodes.size(), 1u);
+  EXPECT_TRUE(FindEncode(record, kMethodMeshvid, "av1", 40)->ok);
+}
+
+}  // namespace
+}  // namespace meshvid

@@ -1,0 +1,126 @@
+// RESULTS.md and RD plots (tools/bench/bench_report.h) from a small fake record set.
+#include "tools/bench/bench_report.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "tests/bench_fake_records.h"
+#include "tests/test_util.h"
+#include "tools/bench/child_process.h"
+
+namespace meshvid {
+namespace {
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+ReportOptions FakeOptions() {
+  ReportOptions options;
+  options.date = "2026-11-22T11:00:00Z";
+  options.command_line = "meshvid bench --quick -o bench/results";
+  options.plots["fake-3-arc"] = "results/fake-3-arc-rd.png";
+  return options;
+}
+
+TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
+  BenchRecord failed_sim;
+  failed_sim.sequence = "broken";
+  failed_sim.rig = "6-ring";
+  failed_sim.simulate_error = "exit code 1: no such file";
+  const std::vector<BenchRecord> records = {testing::FakeRecord(), failed_sim};
+  const std::string md = GenerateResultsMarkdown(records, FakeOptions());
+  EXPECT_TRUE(Contains(md, "# meshvid bench: results")) << md;
+  EXPECT_TRUE(Contains(md, "on 2026-11-22T11:00:00Z"));
+  EXPECT_TRUE(Contains(md, "    meshvid bench --quick -o bench/results\n"));
+  EXPECT_TRUE(Contains(md, "Test CPU @ 2.7GHz, 2 cores, 24.0 GB RAM, Linux 6.1 x86_64"));
+  // Goal: best BD-rate -50% (not met), decode 600/30 = 20x (met), coverage 95% vs 90% (met).
+  EXPECT_TRUE(
+      Contains(md, "| fake | 3-arc | -50.0% (HEVC L1) not met | 20.0x met | 95.0% vs 90.0% met |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | |"));
+  EXPECT_TRUE(Contains(md, "(peak memory floor: the bench process's own 21 MB)"));
+  EXPECT_TRUE(Contains(md, "**Simulation failed**, nothing else ran: exit code 1: no such file"));
+  // The BD-rate table: a value with its interval, and the reason where there is none.
+  EXPECT_TRUE(Contains(md, "| HEVC | 1 | **-50.0%** | 30.00 - 45.00 dB |  |"));
+  EXPECT_TRUE(Contains(md, "| HEVC | 0 | n/a |  | the PSNR ranges do not overlap"));
+  // Point rows: the baseline first, PSNR inf printed as such.
+  EXPECT_TRUE(Contains(md,
+                       "| baseline | DRACO | 8 bits | - | 100000 | 20 | 30.00 | 33.00 | 2 | 4 | "
+                       "90.0% | 0.4 | 30 | 250 | 250 |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| meshvid | HEVC | q20 | 1 | 50000 | 10 | 30.00 |"));
+  EXPECT_TRUE(Contains(md, "| meshvid | FFV1 | q100 | 1 | 900000 | 180 | inf | 70.00 |"));
+  EXPECT_LT(md.find("| baseline | DRACO | 8 bits"), md.find("| meshvid | HEVC | q20 | 1"));
+  EXPECT_TRUE(Contains(md, "![D1 PSNR against rate, fake-3-arc](results/fake-3-arc-rd.png)"));
+  EXPECT_TRUE(Contains(md, "- av1 q40: encode: exit code 1: out of cheese"));
+  EXPECT_TRUE(
+      Contains(md, "meshvid simulate scene:fake -o work/fake-3-arc/capture --views 3 -q\n"));
+  EXPECT_TRUE(Contains(md, "meshvid decode hevc-q20.mvid --level 1 --no-write -q\n"));
+  // Only the first file's decode commands are listed; every encode is.
+  EXPECT_FALSE(Contains(md, "meshvid decode hevc-q40.mvid"));
+  EXPECT_TRUE(Contains(md, "meshvid encode c -o av1-q40.mvid --codec av1 -q\n"));
+  // Deterministic.
+  EXPECT_EQ(md, GenerateResultsMarkdown(records, FakeOptions()));
+}
+
+TEST(BenchReportTest, MissingPlotsAreExplained) {
+  ReportOptions options = FakeOptions();
+  options.plots.clear();
+  options.plot_note = "gnuplot is not installed";
+  const std::string md = GenerateResultsMarkdown({testing::FakeRecord()}, options);
+  EXPECT_TRUE(Contains(md, "(No plot: gnuplot is not installed)"));
+  EXPECT_FALSE(Contains(md, "!["));
+}
+
+TEST(BenchReportTest, PlotScriptHasEveryCurve) {
+  const std::string script = RdPlotScript(testing::FakeRecord(), "fake-3-arc-rd.png");
+  EXPECT_TRUE(Contains(script, "set output \"fake-3-arc-rd.png\""));
+  EXPECT_TRUE(Contains(script, "set logscale x"));
+  EXPECT_TRUE(Contains(script, "title \"baseline: per-frame fusion + Draco\""));
+  EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L1\""));
+  EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L0\""));
+  // The lossless point has PSNR inf: not drawable, so no FFV1 curve.
+  EXPECT_FALSE(Contains(script, "FFV1"));
+  // The baseline's data: Mbit/s and D1 PSNR, sorted by rate.
+  EXPECT_TRUE(
+      Contains(script, "$s0 << EOD\n20 30.0000\n40 35.0000\n80 40.0000\n160 45.0000\nEOD\n"))
+      << script;
+  EXPECT_EQ(RdPlotScript(BenchRecord{}, "x.png"), "");
+}
+
+TEST(BenchReportTest, PlotsAreDrawnWithGnuplotOrSkippedWithAMessage) {
+  testing::TempDir dir;
+  const std::vector<BenchRecord> records = {testing::FakeRecord()};
+  const std::string saved_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", dir.path().c_str(), 1);  // no gnuplot here
+  auto skipped = RenderRdPlots(records, dir.path(), dir.File("logs"));
+  setenv("PATH", saved_path.c_str(), 1);
+  ASSERT_FALSE(skipped.ok());
+  EXPECT_EQ(skipped.status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(Contains(skipped.status().message(), "gnuplot-nox"));
+  EXPECT_FALSE(std::filesystem::exists(dir.File("fake-3-arc.gp")));
+
+  if (FindProgram("gnuplot").empty()) GTEST_SKIP() << "gnuplot is not installed";
+  auto plots = RenderRdPlots(records, dir.path(), dir.File("logs"));
+  ASSERT_TRUE(plots.ok()) << plots.status().ToString();
+  ASSERT_EQ(plots->count("fake-3-arc"), 1u);
+  EXPECT_EQ(plots->at("fake-3-arc"), "fake-3-arc-rd.png");
+  EXPECT_TRUE(std::filesystem::exists(dir.File("fake-3-arc.gp")));
+  const std::string png = testing::ReadFile(dir.File("fake-3-arc-rd.png"));
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(BenchReportTest, MachineInfoIsRead) {
+  const MachineInfo machine = ReadMachineInfo();
+  EXPECT_GT(machine.cores, 0);
+  EXPECT_GT(machine.ram_gb, 0.0);
+  EXPECT_FALSE(machine.kernel.empty());
+}
+
+}  // namespace
+}  // namespace meshvid

@@ -1,0 +1,262 @@
+// The bench orchestration (tools/bench/bench_runner.h) against a fake `meshvid` (a shell
+// script answering simulate, bench-baseline, encode, info, decode and eval like the real one),
+// so resuming and failure recording are tested in milliseconds; and the child processes.
+#include "tools/bench/bench_runner.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/test_util.h"
+#include "tools/bench/child_process.h"
+
+namespace meshvid {
+namespace {
+
+/// Appends its arguments to calls.txt beside itself. encode fails for --quality 66.
+constexpr const char* kFakeMeshvid = R"SH(#!/bin/sh
+here=$(dirname "$0")
+echo "$*" >> "$here/calls.txt"
+cmd=$1; shift
+if [ "$cmd" = info ]; then
+  q=$(cat "$1")
+  echo "{\"levels\": 1, \"frames\": 2, \"bytes\": {\"file\": $((q * 100))}}"
+  exit 0
+fi
+out=; json=; summary=; quality=0; level=0; test=; bits=
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -o) out=$2; shift ;;
+    --json) json=$2; shift ;;
+    --summary-json) summary=$2; shift ;;
+    --quality) quality=$2; shift ;;
+    --level) level=$2; shift ;;
+    --test) test=$2; shift ;;
+    --bits) bits=$2; shift ;;
+    --ref|--codec|--views|--layout|--frames|--samples|--azimuth) shift ;;
+    -*) ;;
+  esac
+  shift
+done
+case $cmd in
+  simulate)
+    mkdir -p "$out" && touch "$out/f0_v0.ply" "$out/f1_v0.ply" "$out/ground_truth.obj"
+    echo '{"format": "meshvid-capture", "version": 1, "frame_rate": 50, "views": [{"name": "v0"}],
+           "frames": [["f0_v0.ply"], ["f1_v0.ply"]]}' > "$out/manifest.json" ;;
+  bench-baseline)
+    settings=
+    for b in $(echo "$bits" | tr ',' ' '); do
+      mkdir -p "$out/b$b" && touch "$out/b$b/f0000.ply"
+      [ -n "$settings" ] && settings="$settings,"
+      settings="$settings{\"position_bits\": $b, \"bytes_total\": $((b * 1000)),
+        \"encode_seconds\": 0.5, \"decode_seconds\": 0.1, \"vertices\": 100,
+        \"triangles\": 200, \"pattern\": \"$out/b$b/f{frame:04}.ply\"}"
+    done
+    echo "{\"frames\": 2, \"frame_rate\": 50, \"load_seconds\": 0.5, \"fuse_seconds\": 1.0,
+           \"settings\": [$settings]}" > "$summary" ;;
+  encode)
+    if [ "$quality" = 66 ]; then echo "encoder exploded" >&2; exit 1; fi
+    echo "$quality" > "$out" ;;
+  decode)
+    echo '{"frames_per_second": 500, "vertices": 1000}' > "$json" ;;
+  bench-draco-decode)
+    echo '{"frames_per_second": 20}' > "$json" ;;
+  eval)
+    case "$test" in
+      *.mvid) psnr=$((30 + $(cat "$test") / 10 + level)) ;;
+      *) psnr=$(echo "$test" | sed 's|.*/b\([0-9]*\)/.*|\1|'); psnr=$((psnr * 3)) ;;
+    esac
+    echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\", \"accuracy_rms\": 0.001,
+           \"completeness_rms\": 0.002, \"hausdorff\": 0.01, \"coverage\": 0.9},
+           \"frames\": [{}, {}]}" > "$json" ;;
+  *) echo "unknown command $cmd" >&2; exit 2 ;;
+esac
+)SH";
+
+struct FakeBench {
+  testing::TempDir dir;
+  BenchOptions options;
+  std::vector<std::string> log;
+  BenchEvents events;
+
+  FakeBench() {
+    const std::string fake = dir.File("meshvid");
+    testing::WriteFile(fake, kFakeMeshvid);
+    chmod(fake.c_str(), 0755);
+    options.meshvid = fake;
+    options.sequences = {{"fake", "scene:fake", 0}};
+    options.rigs = {{3, "arc"}};
+    options.codecs = {"hevc"};
+    options.qualities = {40, 66, 80};
+    options.position_bits = {10, 14};
+    options.eval_samples = 1000;
+    options.results_dir = dir.File("results");
+    options.work_dir = dir.File("work");
+    events.log = [this](const std::string& line) { log.push_back(line); };
+  }
+  std::vector<std::string> Calls() const {
+    std::vector<std::string> calls;
+    std::istringstream in(testing::ReadFile(dir.File("calls.txt")));
+    for (std::string line; std::getline(in, line);) calls.push_back(line);
+    return calls;
+  }
+};
+
+TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
+  FakeBench bench;
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  ASSERT_EQ(records->size(), 1u);
+  const BenchRecord& r = (*records)[0];
+  EXPECT_TRUE(r.simulate_ok) << r.simulate_error;
+  EXPECT_EQ(r.frames, 2);
+  EXPECT_DOUBLE_EQ(r.frame_rate, 50);
+  EXPECT_TRUE(r.baseline_ok) << r.baseline_error;
+  // 2 baseline points, (40, 80) x levels 0..1 and the lossless point x 2 levels.
+  EXPECT_EQ(r.points.size(), 2u + 4u + 2u);
+  for (const BenchPoint& p : r.points) EXPECT_TRUE(p.ok) << p.codec << p.quality << ": " << p.error;
+  BenchRecord copy = r;
+  const BenchPoint* b10 = FindPoint(copy, kMethodBaseline, "draco", 10, -1);
+  ASSERT_NE(b10, nullptr);
+  EXPECT_DOUBLE_EQ(b10->bytes_per_frame, 5000);
+  EXPECT_DOUBLE_EQ(b10->mbit_per_s, 5000 * 8 * 50 / 1e6);
+  EXPECT_DOUBLE_EQ(b10->d1_psnr, 30);
+  EXPECT_DOUBLE_EQ(b10->decode_fps, 20);  // from bench-draco-decode
+  EXPECT_GT(b10->decode_peak_mb, 0);
+  ASSERT_EQ(b10->commands.size(), 3u);  // baseline, Draco decoding, eval
+  EXPECT_EQ(b10->commands[1].rfind("meshvid bench-draco-decode ", 0), 0u) << b10->commands[1];
+  EXPECT_DOUBLE_EQ(b10->encode_fps, 2 / 2.0);  // 2 frames / (0.5 + 1.0 + 0.5) s
+  EXPECT_TRUE(std::isinf(b10->d2_psnr));
+  const BenchPoint* h80 = FindPoint(copy, kMethodMeshvid, "hevc", 80, 1);
+  ASSERT_NE(h80, nullptr);
+  EXPECT_DOUBLE_EQ(h80->bytes_per_frame, 4000);  // 8000-byte file, 2 frames
+  EXPECT_DOUBLE_EQ(h80->d1_psnr, 39);
+  EXPECT_DOUBLE_EQ(h80->decode_fps, 500);
+  EXPECT_GT(h80->encode_peak_mb, 0);
+  ASSERT_EQ(h80->commands.size(), 3u);
+  EXPECT_EQ(h80->commands[1].rfind("meshvid decode ", 0), 0u) << h80->commands[1];
+  const BenchEncode* failed = FindEncode(copy, kMethodMeshvid, "hevc", 66);
+  ASSERT_NE(failed, nullptr);
+  EXPECT_FALSE(failed->ok);
+  EXPECT_NE(failed->error.find("encoder exploded"), std::string::npos) << failed->error;
+  ASSERT_EQ(r.bd_rates.size(), 2u);  // hevc levels 0 and 1 (ffv1: one point)
+  bool logged_failure = false;
+  for (const std::string& line : bench.log)
+    logged_failure |= line.find("q66 FAILED") != std::string::npos;
+  EXPECT_TRUE(logged_failure);
+  // The record on disk is what was returned; the baseline's decoded frames are gone.
+  auto saved = ReadBenchRecord(bench.options.results_dir + "/fake-3-arc.json");
+  ASSERT_TRUE(saved.ok()) << saved.status().ToString();
+  EXPECT_EQ(saved->points.size(), r.points.size());
+  EXPECT_FALSE(std::filesystem::exists(bench.options.work_dir + "/fake-3-arc/baseline/b10"));
+
+  // Again: only the failed encode is retried.
+  const std::size_t calls = bench.Calls().size();
+  records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok());
+  const std::vector<std::string> after = bench.Calls();
+  ASSERT_EQ(after.size(), calls + 1);
+  EXPECT_EQ(after.back().rfind("encode ", 0), 0u);
+  EXPECT_NE(after.back().find("--quality 66"), std::string::npos);
+  EXPECT_EQ((*records)[0].points.size(), r.points.size());
+
+  // Other settings: the record is not reused.
+  bench.options.frames = 1;
+  records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok());
+  EXPECT_GT(bench.Calls().size(), after.size() + 10);
+}
+
+TEST(BenchRunnerTest, StopsWhenProgressAsksAndKeepsWhatIsDone) {
+  FakeBench bench;
+  bench.events.progress = [](std::string_view, long done, long) { return done < 2; };
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_FALSE(records.ok());
+  EXPECT_EQ(records.status().code(), StatusCode::kCancelled);
+  auto saved = ReadBenchRecord(bench.options.results_dir + "/fake-3-arc.json");
+  ASSERT_TRUE(saved.ok());
+  EXPECT_TRUE(saved->simulate_ok);
+  EXPECT_TRUE(saved->baseline_ok);
+}
+
+TEST(BenchRunnerTest, AMissingExecutableIsAClearError) {
+  FakeBench bench;
+  bench.options.meshvid = bench.dir.File("nothing-here");
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_FALSE(records.ok());
+  EXPECT_NE(records.status().message().find("nothing-here"), std::string::npos);
+}
+
+TEST(BenchRunnerTest, SequencesRigsAndListsAreParsed) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir.File("sequences"));
+  testing::WriteFile(dir.File("sequences/samba.obj"), "");
+  testing::WriteFile(dir.File("sequences/samba.pc2"), "");
+  testing::WriteFile(dir.File("sequences/lonely.obj"), "");  // no .pc2: not a sequence
+  auto all = ResolveBenchSequences("", dir.path());
+  ASSERT_TRUE(all.ok());
+  ASSERT_EQ(all->size(), 3u);
+  EXPECT_EQ((*all)[0].name, "samba");
+  EXPECT_EQ((*all)[0].ground_truth, dir.File("sequences/samba.obj"));
+  EXPECT_DOUBLE_EQ((*all)[0].azimuth_deg, 90);
+  EXPECT_EQ((*all)[1].ground_truth, "scene:arm-block");
+  EXPECT_EQ((*all)[2].ground_truth, "scene:cloth");
+  auto some = ResolveBenchSequences("scene:cloth,samba,/data/my dance.obj", dir.path());
+  ASSERT_TRUE(some.ok()) << some.status().ToString();
+  ASSERT_EQ(some->size(), 3u);
+  EXPECT_EQ((*some)[0].name, "cloth");
+  EXPECT_EQ((*some)[2].name, "my_dance");
+  EXPECT_EQ((*some)[2].ground_truth, "/data/my dance.obj");
+  auto unknown = ResolveBenchSequences("lonely", dir.path());
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.status().message().find("samba, arm-block, cloth"), std::string::npos)
+      << unknown.status().message();
+
+  auto rigs = ParseRigList("3-arc,8-ring");
+  ASSERT_TRUE(rigs.ok());
+  ASSERT_EQ(rigs->size(), 2u);
+  EXPECT_EQ((*rigs)[1].name(), "8-ring");
+  EXPECT_FALSE(ParseRigList("3-circle").ok());
+  EXPECT_FALSE(ParseRigList("arc").ok());
+  EXPECT_FALSE(ParseRigList("0-arc").ok());
+  auto list = ParseIntList("8,10,12", 1, 30, "--bits");
+  ASSERT_TRUE(list.ok());
+  EXPECT_EQ(*list, (std::vector<int>{8, 10, 12}));
+  auto bad = ParseIntList("8,,12", 1, 30, "--bits");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("--bits '8,,12'"), std::string::npos);
+  EXPECT_FALSE(ParseIntList("31", 1, 30, "--bits").ok());
+}
+
+TEST(ChildProcessTest, ExitCodesSignalsLogsAndCost) {
+  testing::TempDir dir;
+  auto run = RunChild({"/bin/sh", "-c", "echo first; echo second >&2; exit 3"}, dir.File("a.log"));
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+  EXPECT_EQ(run->exit_code, 3);
+  EXPECT_FALSE(run->ok());
+  EXPECT_GT(run->peak_rss_mb, 0.0);
+  EXPECT_GE(run->wall_seconds, 0.0);
+  EXPECT_EQ(LogTail(dir.File("a.log")), "first; second");
+  EXPECT_EQ(LogTail(dir.File("a.log"), 1), "second");
+  run = RunChild({"/bin/sh", "-c", "kill -TERM $$"}, "");
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run->signal, 15);
+  EXPECT_FALSE(run->ok());
+  run = RunChild({"sh", "-c", "printf 'bar 1/3\\rbar 3/3  \\n'"}, dir.File("b.log"));
+  ASSERT_TRUE(run.ok());
+  EXPECT_TRUE(run->ok());
+  EXPECT_EQ(LogTail(dir.File("b.log")), "bar 3/3");
+  run = RunChild({dir.File("no-such-program")}, "");
+  EXPECT_TRUE(!run.ok() || run->exit_code == 127);
+  EXPECT_EQ(ShellQuoteCommand({"meshvid", "eval", "--test", "a b/f{frame:04}.ply", "it's"}),
+            "meshvid eval --test 'a b/f{frame:04}.ply' 'it'\\''s'");
+  EXPECT_EQ(FindProgram("sh").empty(), false);
+  EXPECT_EQ(FindProgram("surely-not-a-program-xyz"), "");
+}
+
+}  // namespace
+}  // namespace meshvid

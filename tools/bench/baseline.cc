@@ -1,0 +1,203 @@
+#include "tools/bench/baseline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "codec/dec/base_mesh_decoder.h"
+#include "codec/enc/base_mesh_encoder.h"
+#include "tools/io/mesh_io.h"
+
+namespace meshvid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string FramePath(const std::string& folder, int frame, const char* extension) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "/f%04d.%s", frame, extension);
+  return folder + name;
+}
+
+}  // namespace
+
+StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
+                                      const BaselineOptions& options,
+                                      const ProgressCallback& progress) {
+  if (options.position_bits.empty()) {
+    return InvalidArgumentError("the baseline needs at least one Draco position_bits setting");
+  }
+  for (int bits : options.position_bits) {
+    if (bits < 1 || bits > 30) {
+      return InvalidArgumentError("Draco position bits must be 1..30 (got " + std::to_string(bits) +
+                                  ")");
+    }
+  }
+  BaselineSummary summary;
+  summary.frames = capture.frame_count();
+  summary.frame_rate = capture.info().frame_rate;
+  std::vector<std::string> folders;
+  for (int bits : options.position_bits) {
+    BaselineSetting setting;
+    setting.position_bits = bits;
+    if (!options.out_dir.empty()) {
+      const std::string folder = options.out_dir + "/b" + std::to_string(bits);
+      std::error_code error;
+      std::filesystem::create_directories(folder, error);
+      if (error) return IoError(folder + ": cannot create: " + error.message());
+      folders.push_back(folder);
+      setting.pattern = folder + "/f{frame:04}.ply";
+    }
+    summary.settings.push_back(setting);
+  }
+  BaseMeshEncoding encoding;
+  encoding.encoding_speed = options.draco_speed;
+  encoding.preserve_order = false;  // edgebreaker: what a per-frame player streams
+  MeshWriteOptions write_options;
+  write_options.write_normals = false;
+
+  for (int frame = 0; frame < summary.frames; ++frame) {
+    const std::string where = "baseline frame " + std::to_string(frame);
+    Clock::time_point start = Clock::now();
+    StatusOr<std::vector<TriangleMesh>> views = capture.LoadFrame(frame);
+    if (!views.ok()) return views.status().WithContext(where);
+    summary.load_seconds += SecondsSince(start);
+
+    start = Clock::now();
+    StatusOr<TriangleMesh> fused = FuseRangeMeshes(*views, options.fusion);
+    if (!fused.ok()) return fused.status().WithContext(where + ": fusion");
+    summary.fuse_seconds += SecondsSince(start);
+    views->clear();
+
+    for (std::size_t s = 0; s < summary.settings.size(); ++s) {
+      BaselineSetting& setting = summary.settings[s];
+      encoding.position_bits = setting.position_bits;
+      start = Clock::now();
+      StatusOr<EncodedBaseMesh> encoded = EncodeBaseMesh(*fused, encoding);
+      if (!encoded.ok()) return encoded.status().WithContext(where + ": Draco");
+      setting.encode_seconds += SecondsSince(start);
+      setting.bytes_total += encoded->bytes.size();
+
+      start = Clock::now();
+      StatusOr<TriangleMesh> decoded = DecodeBaseMesh(encoded->bytes);
+      if (!decoded.ok()) return decoded.status().WithContext(where + ": Draco decoding");
+      setting.decode_seconds += SecondsSince(start);
+      setting.vertices += decoded->vertex_count();
+      setting.triangles += decoded->triangle_count();
+      if (!folders.empty()) {
+        MESHVID_RETURN_IF_ERROR(
+            WriteMesh(FramePath(folders[s], frame, "ply"), *decoded, write_options));
+        const std::string bitstream(encoded->bytes.begin(), encoded->bytes.end());
+        MESHVID_RETURN_IF_ERROR(WriteTextFile(FramePath(folders[s], frame, "drc"), bitstream));
+      }
+    }
+    if (!ReportProgress(progress, "baseline", frame + 1, summary.frames)) {
+      return CancelledError("baseline cancelled");
+    }
+  }
+  for (BaselineSetting& setting : summary.settings) {
+    if (summary.frames > 0) {
+      setting.vertices /= summary.frames;
+      setting.triangles /= summary.frames;
+    }
+  }
+  return summary;
+}
+
+std::string BaselineSummaryToJson(const BaselineSummary& summary) {
+  nlohmann::json j;
+  j["frames"] = summary.frames;
+  j["frame_rate"] = summary.frame_rate;
+  j["load_seconds"] = summary.load_seconds;
+  j["fuse_seconds"] = summary.fuse_seconds;
+  j["settings"] = nlohmann::json::array();
+  for (const BaselineSetting& s : summary.settings) {
+    j["settings"].push_back({{"position_bits", s.position_bits},
+                             {"bytes_total", s.bytes_total},
+                             {"encode_seconds", s.encode_seconds},
+                             {"decode_seconds", s.decode_seconds},
+                             {"vertices", s.vertices},
+                             {"triangles", s.triangles},
+                             {"pattern", s.pattern}});
+  }
+  return j.dump(2) + "\n";
+}
+
+StatusOr<BaselineSummary> ParseBaselineSummary(const std::string& text, const std::string& name) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) return CorruptError(name + ": not a JSON object");
+  try {
+    BaselineSummary summary;
+    summary.frames = j.at("frames").get<int>();
+    summary.frame_rate = j.at("frame_rate").get<double>();
+    summary.load_seconds = j.at("load_seconds").get<double>();
+    summary.fuse_seconds = j.at("fuse_seconds").get<double>();
+    for (const nlohmann::json& s : j.at("settings")) {
+      BaselineSetting setting;
+      setting.position_bits = s.at("position_bits").get<int>();
+      setting.bytes_total = s.at("bytes_total").get<std::size_t>();
+      setting.encode_seconds = s.at("encode_seconds").get<double>();
+      setting.decode_seconds = s.at("decode_seconds").get<double>();
+      setting.vertices = s.at("vertices").get<double>();
+      setting.triangles = s.at("triangles").get<double>();
+      setting.pattern = s.at("pattern").get<std::string>();
+      summary.settings.push_back(setting);
+    }
+    return summary;
+  } catch (const std::exception& e) {
+    return CorruptError(name + ": " + e.what());
+  }
+}
+
+StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder) {
+  std::vector<std::string> paths;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.path().extension() == ".drc") paths.push_back(entry.path().string());
+  }
+  if (error) return NotFoundError(folder + ": cannot list: " + error.message());
+  if (paths.empty()) return NotFoundError(folder + ": no .drc file");
+  std::sort(paths.begin(), paths.end());
+  DracoDecodeSummary summary;
+  for (const std::string& path : paths) {
+    MESHVID_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
+    const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                              text.size());
+    const Clock::time_point start = Clock::now();
+    StatusOr<TriangleMesh> mesh = DecodeBaseMesh(bytes);
+    summary.seconds += SecondsSince(start);
+    if (!mesh.ok()) return mesh.status().WithContext(path);
+    summary.frames += 1;
+    summary.bytes_total += bytes.size();
+    summary.vertices += mesh->vertex_count();
+  }
+  summary.vertices /= summary.frames;
+  return summary;
+}
+
+Status WriteTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) return IoError(path + ": cannot open for writing");
+  out << text;
+  out.close();
+  if (!out) return IoError(path + ": write failed");
+  return Status::Ok();
+}
+
+StatusOr<std::string> ReadTextFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return NotFoundError(path + ": cannot open");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace meshvid

@@ -1,0 +1,84 @@
+// The per-frame baseline meshvid is measured against: what today's volumetric-video players
+// stream. Every frame on its own: fuse its views (the same fusion the encoder uses for its
+// base mesh), code the fused mesh with Draco (edgebreaker, position quantisation at several
+// settings), decode it again. Each frame is fused once and reused for every setting.
+#ifndef MESHVID_TOOLS_BENCH_BASELINE_H_
+#define MESHVID_TOOLS_BENCH_BASELINE_H_
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "codec/common/progress.h"
+#include "codec/enc/surface_fusion.h"
+#include "format/status.h"
+#include "tools/io/capture.h"
+
+namespace meshvid {
+
+/// What the baseline runs.
+struct BaselineOptions {
+  /// Draco position quantisation settings, one coded sequence each.
+  std::vector<int> position_bits = {8, 10, 12, 14};
+  int draco_speed = 0;  ///< Draco encoding speed 0 (smallest) .. 10
+  SurfaceFusionOptions fusion;
+  /// Decoded frames are written to `out_dir`/b<bits>/f<frame:04>.ply (binary PLY) for the
+  /// evaluator, and the Draco bitstreams beside them as f<frame:04>.drc (for
+  /// DecodeDracoFrames); "" writes nothing.
+  std::string out_dir;
+};
+
+/// One Draco setting over every frame.
+struct BaselineSetting {
+  int position_bits = 0;
+  std::size_t bytes_total = 0;  ///< sum of the Draco bitstreams (no container)
+  double encode_seconds = 0;    ///< Draco encoding, every frame
+  double decode_seconds = 0;    ///< Draco decoding (DecodeBaseMesh), every frame
+  double vertices = 0;          ///< mean decoded vertices per frame
+  double triangles = 0;         ///< mean decoded triangles per frame
+  std::string pattern;          ///< decoded frames, e.g. "out/b10/f{frame:04}.ply"
+};
+
+/// What the baseline measured.
+struct BaselineSummary {
+  int frames = 0;
+  double frame_rate = 0;
+  double load_seconds = 0;  ///< reading the views of every frame
+  double fuse_seconds = 0;  ///< FuseRangeMeshes, every frame
+  std::vector<BaselineSetting> settings;
+};
+
+/// Runs the baseline on every frame of `capture`, reporting progress per frame ("baseline").
+/// Fails with the frame number if a frame cannot be loaded, fused or coded.
+StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
+                                      const BaselineOptions& options,
+                                      const ProgressCallback& progress = {});
+
+/// The summary as JSON text ({"frames", "frame_rate", "load_seconds", "fuse_seconds",
+/// "settings": [{"position_bits", "bytes_total", ...}]}).
+std::string BaselineSummaryToJson(const BaselineSummary& summary);
+
+/// Parses BaselineSummaryToJson's output; `name` is used in messages.
+StatusOr<BaselineSummary> ParseBaselineSummary(const std::string& text, const std::string& name);
+
+/// What decoding a folder of Draco bitstreams cost.
+struct DracoDecodeSummary {
+  int frames = 0;
+  std::size_t bytes_total = 0;
+  double seconds = 0;   ///< DecodeBaseMesh only, every frame (file reading excluded)
+  double vertices = 0;  ///< mean per frame
+};
+
+/// Decodes every f<frame>.drc of `folder` in name order, as a per-frame player would, timing
+/// the decoding alone. Fails naming the file that does not decode, or if there is none.
+StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder);
+
+/// Writes `text` to `path` (creating or truncating it); fails naming the file.
+Status WriteTextFile(const std::string& path, const std::string& text);
+
+/// Reads a whole file; fails naming the file.
+StatusOr<std::string> ReadTextFile(const std::string& path);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_TOOLS_BENCH_BASELINE_H_

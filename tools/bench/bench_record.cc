@@ -1,0 +1,391 @@
+#include "tools/bench/bench_record.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "tools/bench/bd_rate.h"
+
+namespace meshvid {
+namespace {
+
+using nlohmann::json;
+
+json Number(double value) {
+  if (std::isnan(value)) return nullptr;
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return value;
+}
+
+/// A number written by Number(); a missing key is 0.
+double GetNumber(const json& j, const char* key) {
+  const auto it = j.find(key);
+  if (it == j.end()) return 0;
+  if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
+  if (it->is_string()) {
+    const std::string s = it->get<std::string>();
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+    throw std::invalid_argument(std::string("'") + key + "' is not a number");
+  }
+  return it->get<double>();
+}
+
+json CostToJson(const StepCost& c) {
+  return {{"wall_seconds", c.wall_seconds},
+          {"cpu_seconds", c.cpu_seconds},
+          {"peak_rss_mb", c.peak_rss_mb}};
+}
+
+StepCost CostFromJson(const json& j) {
+  StepCost c;
+  if (!j.is_object()) return c;
+  c.wall_seconds = GetNumber(j, "wall_seconds");
+  c.cpu_seconds = GetNumber(j, "cpu_seconds");
+  c.peak_rss_mb = GetNumber(j, "peak_rss_mb");
+  return c;
+}
+
+json EncodeToJson(const BenchEncode& e) {
+  return {{"method", e.method},
+          {"codec", e.codec},
+          {"quality", e.quality},
+          {"ok", e.ok},
+          {"error", e.error},
+          {"file", e.file},
+          {"frames", e.frames},
+          {"levels", e.levels},
+          {"bytes_total", Number(e.bytes_total)},
+          {"seconds", Number(e.seconds)},
+          {"encode_fps", Number(e.encode_fps)},
+          {"peak_rss_mb", Number(e.peak_rss_mb)},
+          {"decode_fps", Number(e.decode_fps)},
+          {"command", e.command}};
+}
+
+BenchEncode EncodeFromJson(const json& j) {
+  BenchEncode e;
+  e.method = j.value("method", "");
+  e.codec = j.value("codec", "");
+  e.quality = j.value("quality", 0);
+  e.ok = j.value("ok", false);
+  e.error = j.value("error", "");
+  e.file = j.value("file", "");
+  e.frames = j.value("frames", 0);
+  e.levels = j.value("levels", 0);
+  e.bytes_total = GetNumber(j, "bytes_total");
+  e.seconds = GetNumber(j, "seconds");
+  e.encode_fps = GetNumber(j, "encode_fps");
+  e.peak_rss_mb = GetNumber(j, "peak_rss_mb");
+  e.decode_fps = GetNumber(j, "decode_fps");
+  e.command = j.value("command", "");
+  return e;
+}
+
+json PointToJson(const BenchPoint& p) {
+  return {{"method", p.method},
+          {"codec", p.codec},
+          {"quality", p.quality},
+          {"level", p.level},
+          {"ok", p.ok},
+          {"error", p.error},
+          {"frames", p.frames},
+          {"bytes_per_frame", Number(p.bytes_per_frame)},
+          {"mbit_per_s", Number(p.mbit_per_s)},
+          {"d1_psnr", Number(p.d1_psnr)},
+          {"d2_psnr", Number(p.d2_psnr)},
+          {"accuracy_rms", Number(p.accuracy_rms)},
+          {"completeness_rms", Number(p.completeness_rms)},
+          {"hausdorff", Number(p.hausdorff)},
+          {"coverage", Number(p.coverage)},
+          {"encode_fps", Number(p.encode_fps)},
+          {"decode_fps", Number(p.decode_fps)},
+          {"encode_peak_mb", Number(p.encode_peak_mb)},
+          {"decode_peak_mb", Number(p.decode_peak_mb)},
+          {"vertices", Number(p.vertices)},
+          {"commands", p.commands}};
+}
+
+BenchPoint PointFromJson(const json& j) {
+  BenchPoint p;
+  p.method = j.value("method", "");
+  p.codec = j.value("codec", "");
+  p.quality = j.value("quality", 0);
+  p.level = j.value("level", -1);
+  p.ok = j.value("ok", false);
+  p.error = j.value("error", "");
+  p.frames = j.value("frames", 0);
+  p.bytes_per_frame = GetNumber(j, "bytes_per_frame");
+  p.mbit_per_s = GetNumber(j, "mbit_per_s");
+  p.d1_psnr = GetNumber(j, "d1_psnr");
+  p.d2_psnr = GetNumber(j, "d2_psnr");
+  p.accuracy_rms = GetNumber(j, "accuracy_rms");
+  p.completeness_rms = GetNumber(j, "completeness_rms");
+  p.hausdorff = GetNumber(j, "hausdorff");
+  p.coverage = GetNumber(j, "coverage");
+  p.encode_fps = GetNumber(j, "encode_fps");
+  p.decode_fps = GetNumber(j, "decode_fps");
+  p.encode_peak_mb = GetNumber(j, "encode_peak_mb");
+  p.decode_peak_mb = GetNumber(j, "decode_peak_mb");
+  p.vertices = GetNumber(j, "vertices");
+  if (j.contains("commands")) p.commands = j.at("commands").get<std::vector<std::string>>();
+  return p;
+}
+
+/// Where a meshvid curve stands when its PSNR range does not overlap the baseline's: its
+/// nearest point against the baseline's nearest, in dB and in bytes per frame.
+std::string NoOverlapNote(const std::vector<RdPoint>& baseline, const std::vector<RdPoint>& test) {
+  const std::vector<RdPoint> ref = PrepareRdCurve(baseline);
+  const std::vector<RdPoint> tst = PrepareRdCurve(test);
+  if (ref.empty() || tst.empty()) return "";
+  char text[200];
+  if (tst.front().psnr > ref.back().psnr) {
+    std::snprintf(text, sizeof(text),
+                  "; meshvid's lowest point is %.1f dB above the baseline's best, with %.3gx its "
+                  "bytes per frame",
+                  tst.front().psnr - ref.back().psnr, tst.front().rate / ref.back().rate);
+    return text;
+  }
+  if (tst.back().psnr < ref.front().psnr) {
+    std::snprintf(text, sizeof(text),
+                  "; meshvid's best point is %.1f dB below the baseline's lowest, with %.3gx its "
+                  "bytes per frame",
+                  ref.front().psnr - tst.back().psnr, tst.back().rate / ref.front().rate);
+    return text;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string BenchRecordName(const BenchRecord& record) {
+  return record.sequence + "-" + record.rig;
+}
+
+std::string BenchRecordToJson(const BenchRecord& r) {
+  json j;
+  j["format"] = kBenchRecordFormat;
+  j["sequence"] = r.sequence;
+  j["ground_truth"] = r.ground_truth;
+  j["rig"] = r.rig;
+  j["views"] = r.views;
+  j["layout"] = r.layout;
+  j["frames"] = r.frames;
+  j["frame_rate"] = r.frame_rate;
+  j["eval_samples"] = r.eval_samples;
+  j["capture"] = r.capture;
+  j["reference"] = r.reference;
+  j["date"] = r.date;
+  j["run_key"] = r.run_key;
+  j["machine"] = {{"cpu_model", r.machine.cpu_model},
+                  {"cores", r.machine.cores},
+                  {"ram_gb", r.machine.ram_gb},
+                  {"kernel", r.machine.kernel}};
+  j["simulate"] = {{"ok", r.simulate_ok},
+                   {"error", r.simulate_error},
+                   {"command", r.simulate_command},
+                   {"cost", CostToJson(r.simulate_cost)}};
+  j["baseline"] = {{"ok", r.baseline_ok},
+                   {"error", r.baseline_error},
+                   {"command", r.baseline_command},
+                   {"fuse_seconds", r.baseline_fuse_seconds},
+                   {"cost", CostToJson(r.baseline_cost)}};
+  j["bench_process_peak_mb"] = r.bench_process_peak_mb;
+  j["encodes"] = json::array();
+  for (const BenchEncode& e : r.encodes) j["encodes"].push_back(EncodeToJson(e));
+  j["points"] = json::array();
+  for (const BenchPoint& p : r.points) j["points"].push_back(PointToJson(p));
+  j["bd_rates"] = json::array();
+  for (const BdRateEntry& b : r.bd_rates) {
+    j["bd_rates"].push_back({{"codec", b.codec},
+                             {"level", b.level},
+                             {"ok", b.ok},
+                             {"delta", Number(b.delta)},
+                             {"psnr_low", Number(b.psnr_low)},
+                             {"psnr_high", Number(b.psnr_high)},
+                             {"note", b.note}});
+  }
+  return j.dump(2) + "\n";
+}
+
+StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::string& name) {
+  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) return CorruptError(name + ": not a JSON object");
+  if (j.value("format", std::string()) != kBenchRecordFormat) {
+    return UnsupportedError(name + ": not a meshvid bench record (\"format\" is not \"" +
+                            kBenchRecordFormat + "\")");
+  }
+  try {
+    BenchRecord r;
+    r.sequence = j.value("sequence", "");
+    r.ground_truth = j.value("ground_truth", "");
+    r.rig = j.value("rig", "");
+    r.views = j.value("views", 0);
+    r.layout = j.value("layout", "");
+    r.frames = j.value("frames", 0);
+    r.frame_rate = GetNumber(j, "frame_rate");
+    r.eval_samples = j.value("eval_samples", 0);
+    r.capture = j.value("capture", "");
+    r.reference = j.value("reference", "");
+    r.date = j.value("date", "");
+    r.run_key = j.value("run_key", "");
+    if (j.contains("machine")) {
+      const json& m = j.at("machine");
+      r.machine.cpu_model = m.value("cpu_model", "");
+      r.machine.cores = m.value("cores", 0);
+      r.machine.ram_gb = GetNumber(m, "ram_gb");
+      r.machine.kernel = m.value("kernel", "");
+    }
+    if (j.contains("simulate")) {
+      const json& s = j.at("simulate");
+      r.simulate_ok = s.value("ok", false);
+      r.simulate_error = s.value("error", "");
+      r.simulate_command = s.value("command", "");
+      r.simulate_cost = CostFromJson(s.value("cost", json::object()));
+    }
+    if (j.contains("baseline")) {
+      const json& b = j.at("baseline");
+      r.baseline_ok = b.value("ok", false);
+      r.baseline_error = b.value("error", "");
+      r.baseline_command = b.value("command", "");
+      r.baseline_fuse_seconds = GetNumber(b, "fuse_seconds");
+      r.baseline_cost = CostFromJson(b.value("cost", json::object()));
+    }
+    r.bench_process_peak_mb = GetNumber(j, "bench_process_peak_mb");
+    for (const json& e : j.value("encodes", json::array())) r.encodes.push_back(EncodeFromJson(e));
+    for (const json& p : j.value("points", json::array())) r.points.push_back(PointFromJson(p));
+    for (const json& b : j.value("bd_rates", json::array())) {
+      BdRateEntry entry;
+      entry.codec = b.value("codec", "");
+      entry.level = b.value("level", 0);
+      entry.ok = b.value("ok", false);
+      entry.delta = GetNumber(b, "delta");
+      entry.psnr_low = GetNumber(b, "psnr_low");
+      entry.psnr_high = GetNumber(b, "psnr_high");
+      entry.note = b.value("note", "");
+      r.bd_rates.push_back(entry);
+    }
+    return r;
+  } catch (const std::exception& e) {  // nlohmann type errors, bad numbers
+    return CorruptError(name + ": " + e.what());
+  }
+}
+
+StatusOr<BenchRecord> ReadBenchRecord(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return NotFoundError(path + ": cannot open");
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseBenchRecord(text.str(), path);
+}
+
+Status WriteBenchRecord(const BenchRecord& record, const std::string& path) {
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return IoError(temporary + ": cannot open for writing");
+    out << BenchRecordToJson(record);
+    out.close();
+    if (!out) return IoError(temporary + ": write failed");
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) return IoError(path + ": cannot replace: " + error.message());
+  return Status::Ok();
+}
+
+StatusOr<std::vector<BenchRecord>> ReadBenchRecords(const std::string& folder) {
+  std::vector<std::string> paths;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.is_regular_file() && entry.path().extension() == ".json") {
+      paths.push_back(entry.path().string());
+    }
+  }
+  if (error) return NotFoundError(folder + ": cannot list: " + error.message());
+  std::sort(paths.begin(), paths.end());
+  std::vector<BenchRecord> records;
+  for (const std::string& path : paths) {
+    StatusOr<BenchRecord> record = ReadBenchRecord(path);
+    if (record.ok()) {
+      records.push_back(std::move(*record));
+    } else if (record.status().code() != StatusCode::kUnsupported) {
+      return record.status();
+    }
+  }
+  return records;
+}
+
+BenchEncode* FindEncode(BenchRecord& record, const std::string& method, const std::string& codec,
+                        int quality) {
+  for (BenchEncode& e : record.encodes) {
+    if (e.method == method && e.codec == codec && e.quality == quality) return &e;
+  }
+  return nullptr;
+}
+
+BenchPoint* FindPoint(BenchRecord& record, const std::string& method, const std::string& codec,
+                      int quality, int level) {
+  for (BenchPoint& p : record.points) {
+    if (p.method == method && p.codec == codec && p.quality == quality && p.level == level) {
+      return &p;
+    }
+  }
+  return nullptr;
+}
+
+void UpsertPoint(BenchRecord& record, const BenchPoint& point) {
+  if (BenchPoint* p = FindPoint(record, point.method, point.codec, point.quality, point.level)) {
+    *p = point;
+  } else {
+    record.points.push_back(point);
+  }
+}
+
+void UpsertEncode(BenchRecord& record, const BenchEncode& encode) {
+  if (BenchEncode* e = FindEncode(record, encode.method, encode.codec, encode.quality)) {
+    *e = encode;
+  } else {
+    record.encodes.push_back(encode);
+  }
+}
+
+void ComputeBdRates(BenchRecord& record) {
+  record.bd_rates.clear();
+  std::vector<RdPoint> baseline;
+  std::map<std::pair<std::string, int>, std::vector<RdPoint>> curves;  // (codec, level)
+  for (const BenchPoint& p : record.points) {
+    if (!p.ok) continue;
+    if (p.method == kMethodBaseline) {
+      baseline.push_back({p.bytes_per_frame, p.d1_psnr});
+    } else if (p.method == kMethodMeshvid) {
+      curves[{p.codec, p.level}].push_back({p.bytes_per_frame, p.d1_psnr});
+    }
+  }
+  for (const auto& [key, points] : curves) {
+    // One-point configurations (the lossless FFV1 reference) have no curve.
+    if (points.size() < 2) continue;
+    BdRateEntry entry;
+    entry.codec = key.first;
+    entry.level = key.second;
+    StatusOr<BdRateResult> result = BjontegaardDeltaRate(baseline, points);
+    if (result.ok()) {
+      entry.ok = true;
+      entry.delta = result->delta;
+      entry.psnr_low = result->psnr_low;
+      entry.psnr_high = result->psnr_high;
+    } else {
+      entry.note = result.status().message() + NoOverlapNote(baseline, points);
+    }
+    record.bd_rates.push_back(entry);
+  }
+}
+
+}  // namespace meshvid

@@ -1,0 +1,167 @@
+// The results of `meshvid bench` for one sequence and one rig: every coded file, every
+// rate-distortion point (a coded file decoded at one level and evaluated) and the BD-rates
+// against the per-frame baseline. Stored as bench/results/<sequence>-<rig>.json, rewritten
+// after every finished step so an interrupted or failing run loses nothing it finished.
+#ifndef MESHVID_TOOLS_BENCH_BENCH_RECORD_H_
+#define MESHVID_TOOLS_BENCH_BENCH_RECORD_H_
+
+#include <string>
+#include <vector>
+
+#include "format/status.h"
+
+namespace meshvid {
+
+/// The value of the "format" key of a record file; other JSON files in the folder (the
+/// Google-Benchmark results) are not records.
+inline constexpr const char* kBenchRecordFormat = "meshvid-bench-record/1";
+
+/// Method names in records.
+inline constexpr const char* kMethodMeshvid = "meshvid";
+inline constexpr const char* kMethodBaseline = "baseline";
+
+/// What one child process step cost.
+struct StepCost {
+  double wall_seconds = 0;
+  double cpu_seconds = 0;
+  double peak_rss_mb = 0;  ///< peak resident memory, MB (10^6 bytes)
+};
+
+/// One coded representation: a .mvid (method "meshvid") or one Draco setting of the
+/// baseline (method "baseline", codec "draco", quality = position bits).
+struct BenchEncode {
+  std::string method;
+  std::string codec;  ///< "hevc", "av1", "ffv1" or "draco"
+  int quality = 0;    ///< meshvid --quality 0..100; baseline: Draco position bits
+  bool ok = false;
+  std::string error;  ///< why it failed (when !ok)
+  std::string file;   ///< the .mvid, or the baseline's decoded frames ({frame} pattern)
+  int frames = 0;
+  int levels = 0;  ///< finest level stored (baseline: 0)
+  double bytes_total = 0;
+  double seconds = 0;     ///< encode wall time (baseline: load + fusion + Draco coding)
+  double encode_fps = 0;  ///< frames / seconds
+  double peak_rss_mb = 0;
+  double decode_fps = 0;  ///< baseline only: Draco decoding, frames / second
+  std::string command;
+};
+
+/// One rate-distortion point: an encode decoded at one level (baseline: level -1) and
+/// evaluated against the ground truth.
+struct BenchPoint {
+  std::string method;
+  std::string codec;
+  int quality = 0;
+  int level = -1;
+  bool ok = false;
+  std::string error;
+  int frames = 0;
+  double bytes_per_frame = 0;
+  double mbit_per_s = 0;  ///< at the capture's frame rate
+  double d1_psnr = 0;     ///< dB, of the mean MSE over frames (meshvid eval's mean)
+  double d2_psnr = 0;
+  double accuracy_rms = 0;
+  double completeness_rms = 0;
+  double hausdorff = 0;
+  double coverage = 0;  ///< share of ground-truth samples within tolerance, 0..1
+  double encode_fps = 0;
+  double decode_fps = 0;
+  double encode_peak_mb = 0;
+  double decode_peak_mb = 0;
+  double vertices = 0;                ///< vertices per decoded frame (mean)
+  std::vector<std::string> commands;  ///< exact commands that produced the point
+};
+
+/// The BD-rate of one meshvid curve (a codec decoded at one level, over its qualities)
+/// against the baseline curve.
+struct BdRateEntry {
+  std::string codec;
+  int level = 0;
+  bool ok = false;
+  double delta = 0;  ///< fraction: -0.9 = 90% fewer bytes at equal D1 PSNR
+  double psnr_low = 0;
+  double psnr_high = 0;
+  std::string note;  ///< why there is no value (too few points, no overlap)
+};
+
+/// The machine a record was measured on.
+struct MachineInfo {
+  std::string cpu_model;
+  int cores = 0;
+  double ram_gb = 0;
+  std::string kernel;
+};
+
+/// Everything measured for one sequence and rig.
+struct BenchRecord {
+  std::string sequence;      ///< short name, e.g. "samba", "arm-block"
+  std::string ground_truth;  ///< what was simulated (path or scene:NAME)
+  std::string rig;           ///< e.g. "3-arc"
+  int views = 0;
+  std::string layout;  ///< "arc" or "ring"
+  int frames = 0;      ///< capture frames
+  double frame_rate = 25;
+  int eval_samples = 0;   ///< samples per surface used by every evaluation
+  std::string capture;    ///< the capture's manifest
+  std::string reference;  ///< the ground truth every point is evaluated against
+  std::string date;       ///< UTC time of the last update, ISO 8601
+  /// The settings a resumed run must share to reuse this record's steps (frames, samples,
+  /// ground truth, rig).
+  std::string run_key;
+  MachineInfo machine;
+  bool simulate_ok = false;
+  std::string simulate_error;
+  std::string simulate_command;
+  StepCost simulate_cost;
+  bool baseline_ok = false;  ///< the baseline child (fusion + Draco) finished
+  std::string baseline_error;
+  std::string baseline_command;
+  StepCost baseline_cost;
+  double baseline_fuse_seconds = 0;  ///< load + fusion of every frame (shared by all settings)
+  /// Peak resident memory of the bench process itself, MB: Linux counts it in every child's
+  /// peak (exec keeps the larger high-water mark), so no child reports less.
+  double bench_process_peak_mb = 0;
+  std::vector<BenchEncode> encodes;
+  std::vector<BenchPoint> points;
+  std::vector<BdRateEntry> bd_rates;
+};
+
+/// The record's file stem: "<sequence>-<rig>".
+std::string BenchRecordName(const BenchRecord& record);
+
+/// The record as JSON text (PSNRs of +-inf as "inf"/"-inf", NaN as null).
+std::string BenchRecordToJson(const BenchRecord& record);
+
+/// Parses BenchRecordToJson's output; `name` is used in messages. Fails with kCorrupt on
+/// malformed JSON and kUnsupported on JSON that is not a record (another "format").
+StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::string& name);
+
+/// Reads and parses a record file.
+StatusOr<BenchRecord> ReadBenchRecord(const std::string& path);
+
+/// Writes a record file atomically (a temporary file renamed over `path`), so a crash never
+/// leaves a half-written record.
+Status WriteBenchRecord(const BenchRecord& record, const std::string& path);
+
+/// Every record in `folder` (*.json whose "format" is kBenchRecordFormat), sorted by name;
+/// files that are not records are skipped, a record that fails to parse is an error.
+StatusOr<std::vector<BenchRecord>> ReadBenchRecords(const std::string& folder);
+
+/// The encode of (method, codec, quality), or nullptr.
+BenchEncode* FindEncode(BenchRecord& record, const std::string& method, const std::string& codec,
+                        int quality);
+/// The point of (method, codec, quality, level), or nullptr.
+BenchPoint* FindPoint(BenchRecord& record, const std::string& method, const std::string& codec,
+                      int quality, int level);
+/// Stores `point`, replacing the one with the same method, codec, quality and level.
+void UpsertPoint(BenchRecord& record, const BenchPoint& point);
+/// Stores `encode`, replacing the one with the same method, codec and quality.
+void UpsertEncode(BenchRecord& record, const BenchEncode& encode);
+
+/// Recomputes record.bd_rates: for every meshvid codec with >= 2 qualities and every level,
+/// the BD-rate (D1 PSNR, bytes per frame, piecewise-cubic) against the baseline's points.
+void ComputeBdRates(BenchRecord& record);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_TOOLS_BENCH_BENCH_RECORD_H_

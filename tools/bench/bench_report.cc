@@ -1,0 +1,284 @@
+#include "tools/bench/bench_report.h"
+
+#include <sys/utsname.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <thread>
+
+namespace meshvid {
+namespace {
+
+std::string Fmt(const char* format, double value) {
+  if (std::isnan(value)) return "n/a";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+std::string Percent(double fraction) { return Fmt("%+.1f%%", 100 * fraction); }
+
+std::string Upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
+/// The finest level with a point, per lossy meshvid codec.
+int FinestLevel(const BenchRecord& record, const std::string& codec) {
+  int finest = -1;
+  for (const BenchPoint& p : record.points) {
+    if (p.method == kMethodMeshvid && p.codec == codec) finest = std::max(finest, p.level);
+  }
+  return finest;
+}
+
+/// The goal check of one record (issue 5): BD-rate <= -90%, decoding >= 10x faster, coverage
+/// never below the baseline's.
+std::string GoalRow(const BenchRecord& record) {
+  const BdRateEntry* best = nullptr;
+  for (const BdRateEntry& b : record.bd_rates) {
+    if (b.ok && (best == nullptr || b.delta < best->delta)) best = &b;
+  }
+  std::vector<double> meshvid_fps, baseline_fps;
+  double meshvid_coverage = std::numeric_limits<double>::infinity();
+  double baseline_coverage = -1;
+  for (const BenchPoint& p : record.points) {
+    if (!p.ok) continue;
+    if (p.method == kMethodBaseline) {
+      baseline_fps.push_back(p.decode_fps);
+      baseline_coverage = std::max(baseline_coverage, p.coverage);
+    } else if (p.codec != "ffv1" && p.level == FinestLevel(record, p.codec)) {
+      meshvid_fps.push_back(p.decode_fps);
+      meshvid_coverage = std::min(meshvid_coverage, p.coverage);
+    }
+  }
+  const double speedup = Median(meshvid_fps) / Median(baseline_fps);
+  std::string row = "| " + record.sequence + " | " + record.rig + " | ";
+  row += best ? Percent(best->delta) + " (" + Upper(best->codec) + " L" +
+                    std::to_string(best->level) + ")" + (best->delta <= -0.9 ? " met" : " not met")
+              : std::string(record.bd_rates.empty() ? "n/a" : "n/a (see below)");
+  row += " | " + (std::isfinite(speedup)
+                      ? Fmt("%.1fx", speedup) + (speedup >= 10 ? " met" : " not met")
+                      : std::string("n/a"));
+  const bool have_coverage = std::isfinite(meshvid_coverage) && baseline_coverage >= 0;
+  row += " | " + (have_coverage ? Fmt("%.1f%%", 100 * meshvid_coverage) + " vs " +
+                                      Fmt("%.1f%%", 100 * baseline_coverage) +
+                                      (meshvid_coverage >= baseline_coverage ? " met" : " not met")
+                                : std::string("n/a"));
+  return row + " |\n";
+}
+
+std::string PointRow(const BenchPoint& p) {
+  const bool baseline = p.method == kMethodBaseline;
+  std::string setting = std::to_string(p.quality);
+  setting = baseline ? setting + " bits" : "q" + setting;
+  std::string row = "| ";
+  row += baseline ? "baseline" : "meshvid";
+  row += " | " + Upper(p.codec) + " | " + setting + " | ";
+  row += baseline ? std::string("-") : std::to_string(p.level);
+  row += " | ";
+  if (!p.ok) return row + "failed | | | | | | | | | | |\n";
+  row += Fmt("%.0f", p.bytes_per_frame) + " | " + Fmt("%.3g", p.mbit_per_s) + " | " +
+         Fmt("%.2f", p.d1_psnr) + " | " + Fmt("%.2f", p.d2_psnr) + " | " +
+         Fmt("%.3g", 1e3 * p.accuracy_rms) + " | " + Fmt("%.3g", 1e3 * p.completeness_rms) + " | " +
+         Fmt("%.1f%%", 100 * p.coverage) + " | " + Fmt("%.3g", p.encode_fps) + " | " +
+         Fmt("%.3g", p.decode_fps) + " | " + Fmt("%.0f", p.encode_peak_mb) + " | " +
+         Fmt("%.0f", p.decode_peak_mb) + " |\n";
+  return row;
+}
+
+std::string RecordSection(const BenchRecord& record, const ReportOptions& options) {
+  const std::string name = BenchRecordName(record);
+  std::string md = "## " + record.sequence + ", " + std::to_string(record.views) + " views (" +
+                   record.layout + ")\n\n";
+  md += "Ground truth `" + record.ground_truth + "`, " + std::to_string(record.frames) +
+        " frames at " + Fmt("%g", record.frame_rate) + " fps, " +
+        std::to_string(record.eval_samples) + " samples per surface; measured " + record.date +
+        " (peak memory floor: the bench process's own " +
+        Fmt("%.0f", record.bench_process_peak_mb) + " MB). Record: `" + name + ".json`.\n\n";
+  if (!record.simulate_ok) {
+    return md + "**Simulation failed**, nothing else ran: " + record.simulate_error + "\n\n";
+  }
+  const auto plot = options.plots.find(name);
+  if (plot != options.plots.end()) {
+    md += "![D1 PSNR against rate, " + name + "](" + plot->second + ")\n\n";
+  } else if (!options.plot_note.empty()) {
+    md += "(No plot: " + options.plot_note + ")\n\n";
+  }
+  if (!record.bd_rates.empty()) {
+    md += "BD-rate against the baseline (D1 PSNR, bytes per frame; negative = fewer bytes):\n\n";
+    md += "| codec | level | BD-rate | over D1 PSNR | note |\n|---|---|---|---|---|\n";
+    for (const BdRateEntry& b : record.bd_rates) {
+      md += "| " + Upper(b.codec) + " | " + std::to_string(b.level) + " | " +
+            (b.ok ? "**" + Percent(b.delta) + "**" : std::string("n/a")) + " | " +
+            (b.ok ? Fmt("%.2f", b.psnr_low) + " - " + Fmt("%.2f", b.psnr_high) + " dB" : "") +
+            " | " + b.note + " |\n";
+    }
+    md += "\n";
+  }
+  md +=
+      "| method | codec | setting | level | bytes/frame | Mbit/s | D1 PSNR | D2 PSNR | "
+      "accuracy RMS (1e-3) | completeness RMS (1e-3) | coverage | encode fps | decode fps | "
+      "encode MB | decode MB |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<BenchPoint> points = record.points;
+  std::stable_sort(points.begin(), points.end(), [](const BenchPoint& a, const BenchPoint& b) {
+    if (a.method != b.method) return a.method == kMethodBaseline;
+    if (a.codec != b.codec) return a.codec < b.codec;
+    if (a.level != b.level) return a.level > b.level;
+    return a.quality < b.quality;
+  });
+  for (const BenchPoint& p : points) md += PointRow(p);
+  md += "\n";
+  std::string failures;
+  if (!record.baseline_ok && !record.baseline_error.empty()) {
+    failures += "- baseline: " + record.baseline_error + "\n";
+  }
+  for (const BenchEncode& e : record.encodes) {
+    if (!e.ok)
+      failures += "- " + e.codec + " q" + std::to_string(e.quality) + ": " + e.error + "\n";
+  }
+  for (const BenchPoint& p : record.points) {
+    if (!p.ok && p.method == kMethodMeshvid) {
+      failures += "- " + p.codec + " q" + std::to_string(p.quality) + " level " +
+                  std::to_string(p.level) + ": " + p.error + "\n";
+    }
+  }
+  if (!failures.empty())
+    md += "Failed steps (re-run the same command to retry them):\n\n" + failures + "\n";
+
+  md += "<details><summary>Commands of " + name + "</summary>\n\n```sh\n";
+  std::set<std::string> seen;
+  auto add = [&](const std::string& command) {
+    if (!command.empty() && seen.insert(command).second) md += command + "\n";
+  };
+  add(record.simulate_command);
+  add(record.baseline_command);
+  // Every encode, then decode and eval of the first file only: the others differ in the
+  // file name and level alone.
+  for (const BenchEncode& e : record.encodes) {
+    if (e.method == kMethodMeshvid) add(e.command);
+  }
+  std::string example;
+  for (const BenchPoint& p : points) {
+    if (p.method == kMethodMeshvid && example.empty() && p.commands.size() > 1) {
+      example = p.codec + std::to_string(p.quality);
+    }
+    if (p.method == kMethodMeshvid && p.codec + std::to_string(p.quality) != example) continue;
+    for (const std::string& c : p.commands) add(c);
+  }
+  md += "# ... and the same decode and eval commands for every other .mvid file and level.\n";
+  md += "```\n\n</details>\n\n";
+  return md;
+}
+
+}  // namespace
+
+MachineInfo ReadMachineInfo() {
+  MachineInfo info;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos)
+        info.cpu_model = line.substr(line.find_first_not_of(' ', colon + 1));
+      break;
+    }
+  }
+  info.cores = static_cast<int>(std::thread::hardware_concurrency());
+  std::ifstream meminfo("/proc/meminfo");
+  while (std::getline(meminfo, line)) {
+    double kb = 0;
+    if (std::sscanf(line.c_str(), "MemTotal: %lf kB", &kb) == 1) {
+      info.ram_gb = kb * 1024 / 1e9;
+      break;
+    }
+  }
+  struct utsname name {};
+  if (uname(&name) == 0)
+    info.kernel = std::string(name.sysname) + " " + name.release + " " + name.machine;
+  return info;
+}
+
+std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
+                                    const ReportOptions& options) {
+  std::string md = "# meshvid bench: results\n\n";
+  md += "Generated by `meshvid bench` on " + options.date +
+        "; do not edit by hand (run `meshvid bench --report-only` to regenerate it from the "
+        "records in `results/`).\n\n";
+  if (!options.command_line.empty()) md += "    " + options.command_line + "\n\n";
+  std::set<std::string> machines;
+  for (const BenchRecord& r : records) {
+    machines.insert(r.machine.cpu_model + ", " + std::to_string(r.machine.cores) + " cores, " +
+                    Fmt("%.1f", r.machine.ram_gb) + " GB RAM, " + r.machine.kernel);
+  }
+  md += "Machine: ";
+  for (const std::string& m : machines) md += (m == *machines.begin() ? "" : "; ") + m;
+  md += machines.empty() ? "none recorded.\n\n" : ".\n\n";
+
+  md +=
+      "## How it is measured\n\n"
+      "- Each ground-truth sequence is captured by `meshvid simulate` with 3 views on a frontal "
+      "arc and with 6 views on a ring; everything below runs on that capture and is measured "
+      "against the simulated frames' ground truth with `meshvid eval` (the mean over frames; "
+      "D1/D2 PSNR with peak p = the ground truth's bounding-box diagonal).\n"
+      "- **meshvid**: `meshvid encode` at several qualities per codec (HEVC, AV1; FFV1 is the "
+      "lossless reference, one point), each file decoded (`meshvid decode --no-write`) and "
+      "evaluated at every level 0..L. Rate = the whole .mvid file.\n"
+      "- **baseline** (what per-frame volumetric-video players stream): every frame's views "
+      "fused on their own with the encoder's fusion (`FuseRangeMeshes`), the fused mesh coded "
+      "with Draco (edgebreaker, position quantisation 8-14 bits, speed 0), decoded and "
+      "evaluated the same way. Rate = the sum of the Draco bitstreams (no container).\n"
+      "- Mbit/s at the capture's frame rate. Accuracy (test to ground truth) and completeness "
+      "(ground truth to test) are RMS exact point-to-surface distances in 10^-3 data units "
+      "(mm for metric data); coverage is the share of ground-truth samples within 0.25% of p "
+      "of the test surface.\n"
+      "- Speed: encode fps = frames / wall time of `meshvid encode` (process start and "
+      "reading the capture included); the baseline's = frames / (reading + fusion + Draco "
+      "coding). Decode fps = frames / the decoder's own time for every frame, one thread "
+      "(meshvid: `meshvid decode --no-write`, `MvidDecoder::DecodeFrame` to a full mesh, reading "
+      "the file included; baseline: `meshvid bench-draco-decode`, Draco decoding of each "
+      "frame's bitstream, reading excluded, which favours the baseline). Peak memory = the "
+      "child process's peak resident set (wait4), which includes the small bench process's "
+      "own at spawn; the baseline's encode memory is that of its one run (fusion and coding "
+      "at every setting).\n"
+      "- BD-rate: Bjontegaard delta rate of each meshvid codec and level (over its qualities) "
+      "against the baseline, on D1 PSNR: log10(bytes per frame) as a monotone piecewise-cubic "
+      "(PCHIP, Fritsch-Carlson) function of PSNR, integrated over the PSNR interval both "
+      "curves cover (the piecewise-cubic variant of VCEG-M33). n/a when the intervals do "
+      "not overlap.\n\n";
+
+  md +=
+      "## Against the goal\n\n"
+      "Goal (issue 5): at equal D1 PSNR meshvid needs 10x fewer bytes than the baseline "
+      "(BD-rate <= -90%), decodes >= 10x faster, and is never worse in coverage. Best BD-rate "
+      "over meshvid's curves; decode speed = median meshvid decode fps at the finest level over "
+      "median baseline decode fps; coverage = the lowest meshvid coverage at the finest level "
+      "against the best baseline coverage.\n\n";
+  md +=
+      "| sequence | rig | best BD-rate | decode speed vs baseline | coverage: meshvid vs baseline "
+      "|\n";
+  md += "|---|---|---|---|---|\n";
+  for (const BenchRecord& r : records) {
+    md += r.simulate_ok ? GoalRow(r)
+                        : "| " + r.sequence + " | " + r.rig + " | simulation failed | | |\n";
+  }
+  md += "\n";
+  for (const BenchRecord& r : records) md += RecordSection(r, options);
+  return md;
+}
+
+}  // namespace meshvid

@@ -1,0 +1,255 @@
+// `meshvid encode`: a multi-view capture to a .mvid (the method of method.md, end to end).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "codec/enc/encoder.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/terminal.h"
+#include "tools/io/capture.h"
+#include "tools/io/file_pattern.h"
+#include "tools/io/mesh_io.h"
+
+namespace meshvid::cli {
+namespace {
+
+/// The capture as the encoder's frame source.
+class CaptureFrameSource : public FrameSource {
+ public:
+  explicit CaptureFrameSource(std::unique_ptr<CaptureSequence> capture)
+      : capture_(std::move(capture)) {}
+  int frame_count() const override { return capture_->frame_count(); }
+  int view_count() const override { return capture_->view_count(); }
+  double frame_rate() const override { return capture_->info().frame_rate; }
+  StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override {
+    return capture_->LoadFrame(frame);
+  }
+
+ private:
+  std::unique_ptr<CaptureSequence> capture_;
+};
+
+struct EncodeArguments {
+  std::string capture;
+  std::string output;
+  std::string base_mesh;
+  std::string codec = "hevc";
+  std::string frames;
+  std::string summary_json;
+  bool quiet = false;
+  EncoderOptions options;
+};
+
+std::string Kilobytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f kB", bytes / 1000.0);
+  return text;
+}
+
+nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, double seconds) {
+  const double frames = std::max(1, s.frames);
+  nlohmann::json j;
+  j["capture"] = args.capture;
+  j["output"] = args.output;
+  j["codec"] = args.codec;
+  j["quality"] = args.options.quality;
+  j["qp"] = QualityToQp(args.options.codec, args.options.quality);
+  j["levels"] = args.options.levels;
+  j["frames"] = s.frames;
+  j["views"] = s.views;
+  j["frame_rate"] = s.frame_rate;
+  j["base_vertices"] = s.base_vertices;
+  j["samples_per_frame"] = s.samples_per_frame;
+  j["segments"] = s.segments;
+  j["registered_share"] = s.registered_share;
+  j["surface_share"] = s.surface_share;
+  j["filled_share"] = s.filled_share;
+  j["hit_share"] = s.hit_share;
+  j["scale"] = s.scale;
+  j["tolerance"] = s.tolerance;
+  j["bytes_total"] = s.stats.total_bytes;
+  j["bytes_base"] = s.stats.base_bytes;
+  j["bytes_motion"] = s.stats.motion_bytes;
+  j["bytes_transforms"] = s.stats.transform_bytes;
+  j["bytes_video"] = s.stats.video_bytes;
+  j["bytes_per_frame"] = double(s.stats.total_bytes) / frames;
+  j["mbit_per_s"] = double(s.stats.total_bytes) * 8.0 / frames * s.frame_rate / 1e6;
+  j["seconds"] = seconds;
+  j["frames_per_second"] = seconds > 0 ? frames / seconds : 0.0;
+  j["seconds_by_stage"] = {{"base", s.seconds_base},
+                           {"proxies", s.seconds_proxies},
+                           {"segmentation", s.seconds_segmentation},
+                           {"detail", s.seconds_detail},
+                           {"coding", s.seconds_coding}};
+  return j;
+}
+
+void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double seconds) {
+  const double frames = std::max(1, s.frames);
+  const MvidWriteStats& b = s.stats;
+  std::fprintf(stderr,
+               "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
+               "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
+               "  segments      %d rigid pieces, %.1f%% of base vertices registered, %.1f%% of base "
+               "triangles seen\n"
+               "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
+               "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
+               "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
+               s.frames, s.views, args.capture.c_str(), args.output.c_str(), seconds,
+               frames / seconds, s.base_vertices, s.samples_per_frame, args.options.levels,
+               s.segments, 100 * s.registered_share, 100 * s.surface_share, 100 * s.hit_share, 100 * s.filled_share,
+               Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
+               Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),
+               Kilobytes(b.total_bytes).c_str(), Kilobytes(b.total_bytes / frames).c_str(),
+               b.total_bytes * 8.0 / frames * s.frame_rate / 1e6, s.frame_rate);
+}
+
+int RunEncode(EncodeArguments args) {
+  const std::optional<VideoCodec> codec = ParseVideoCodec(args.codec);
+  if (!codec) {
+    return ReportError(InvalidArgumentError("--codec: unknown codec '" + args.codec +
+                                            "' (hevc, av1 or ffv1)"));
+  }
+  args.options.codec = *codec;
+  StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.capture);
+  if (!capture.ok()) return ReportError(capture.status());
+  if (!args.frames.empty()) {
+    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*capture)->frame_count());
+    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    args.options.first_frame = range->first;
+    args.options.end_frame = range->second;
+  }
+  if (!args.base_mesh.empty()) {
+    StatusOr<TriangleMesh> base = ReadMesh(args.base_mesh);
+    if (!base.ok()) return ReportError(base.status().WithContext("--base-mesh"));
+    args.options.base_mesh = std::move(*base);
+  }
+  nlohmann::json metadata;
+  metadata["encoder"] = "meshvid encode";
+  metadata["capture"] = std::filesystem::path(args.capture).filename().string();
+  args.options.metadata_json = metadata.dump();
+
+  // Written to a temporary file first: a failed encode never leaves a truncated .mvid behind.
+  const std::string partial = args.output + ".partial";
+  std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+  if (!out) return ReportError(IoError("cannot create " + partial));
+  CaptureFrameSource source(std::move(*capture));
+  ProgressBar bar(args.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  StatusOr<EncodeSummary> summary =
+      EncodeCapture(source, OstreamSink(out, args.output), args.options, bar.Callback());
+  bar.Finish();
+  out.close();
+  if (!summary.ok() || !out) {
+    std::filesystem::remove(partial);
+    return ReportError(summary.ok() ? IoError("cannot write " + args.output) : summary.status());
+  }
+  std::error_code error;
+  std::filesystem::rename(partial, args.output, error);
+  if (error) return ReportError(IoError("cannot rename " + partial + ": " + error.message()));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!args.quiet) PrintSummary(*summary, args, seconds);
+  if (!args.summary_json.empty()) {
+    std::ofstream json(args.summary_json);
+    json << SummaryJson(*summary, args, seconds).dump(2) << "\n";
+    if (!json) return ReportError(IoError("cannot write " + args.summary_json));
+  }
+  return 0;
+}
+
+}  // namespace
+
+void AddEncodeCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<EncodeArguments>();
+  EncoderOptions& o = args->options;
+  CLI::App* cmd = app.add_subcommand(
+      "encode",
+      "Encode a multi-view capture into a .mvid: a base mesh (fused from frame 0 or given), "
+      "piecewise-rigid motion found by a multi-frame segmentation, and the fused surface "
+      "detail as a displacement video. Lengths default to fractions of frame 0's size.");
+  cmd->add_option("CAPTURE", args->capture,
+                  "The capture: a manifest.json, a file pattern with {frame} and {view} "
+                  "(cap/f{frame:04}_v{view}.ply) or a Stanford .conf")
+      ->required();
+  cmd->add_option("-o,--out", args->output, "The .mvid file to write")->required();
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--codec", args->codec, "Displacement video codec: hevc, av1 or ffv1")
+      ->capture_default_str();
+  cmd->add_option("--quality", o.quality,
+                  "0 (smallest) .. 100 (finest); sets the video quantiser (HEVC QP = "
+                  "51 x (1 - q/100)); FFV1 is lossless")
+      ->capture_default_str();
+  cmd->add_option("--levels", o.levels,
+                  "Subdivision levels of the displacement lattice: the finest resolution a "
+                  "decoder can choose")
+      ->capture_default_str();
+  cmd->add_option("--effort", o.effort, "Video encoder effort 0 (fastest) .. 9")
+      ->capture_default_str();
+  cmd->add_option("--gof", o.gof_size, "Frames per group (random-access unit)")
+      ->capture_default_str();
+  cmd->add_option("--window", o.window,
+                  "Most frames the segmentation analyses jointly; longer captures are "
+                  "segmented on this many frames spread over them and then tracked")
+      ->capture_default_str();
+  cmd->add_option("--base-mesh", args->base_mesh,
+                  "Use this mesh (PLY/OBJ) as the base, rigidly fitted to the first frame, "
+                  "instead of fusing the first frame's views");
+  cmd->add_option("--base-vertices", o.base_vertices,
+                  "Vertices of the automatic base mesh after decimation")
+      ->capture_default_str();
+  cmd->add_option("--base-max-error", o.base_max_error,
+                  "Largest surface change a decimation step may make (0: 1% of the size)")
+      ->capture_default_str();
+  cmd->add_option("--base-max-normal-deviation", o.base_max_normal_deviation_degrees,
+                  "Largest normal change of a decimation step, degrees")
+      ->capture_default_str();
+  cmd->add_option("--tol", o.tolerance,
+                  "Segmentation tolerance UserTol (eq. 6): largest distance between a "
+                  "vertex moved by its segment and the data (0: 0.5% of the size)")
+      ->capture_default_str();
+  cmd->add_option("--tol-start", o.initial_tolerance_factor,
+                  "Each frame's search starts at this multiple of --tol")
+      ->capture_default_str();
+  cmd->add_option("--tol-shrink", o.tolerance_shrink, "Tolerance factor per step, in (0, 1)")
+      ->capture_default_str();
+  cmd->add_option("--occlusion-frames", o.occlusion_frames,
+                  "Frames a vertex may be missing or off and stay in its segment")
+      ->capture_default_str();
+  cmd->add_option("--min-segment", o.min_segment_vertices,
+                  "Smallest segment (vertices); a smaller one ends the segmentation")
+      ->capture_default_str();
+  cmd->add_option("--max-segments", o.max_segments, "Most segments")->capture_default_str();
+  cmd->add_option("--icp-iterations", o.icp_iterations,
+                  "Correspondence and rigid solve rounds per tolerance step")
+      ->capture_default_str();
+  cmd->add_option("--smoothing", o.track_smoothing,
+                  "Passes of (t-1, t, t+1) smoothing of the rigid tracks")
+      ->capture_default_str();
+  cmd->add_option("--proxy-fraction", o.proxy_fraction,
+                  "Share of each view's vertices kept in its correspondence proxy")
+      ->capture_default_str();
+  cmd->add_option("--max-distance", o.max_distance,
+                  "Farthest correspondence along a normal; also the coarsest tolerance of a new "
+                  "frame's search (0: 8% of the size)")
+      ->capture_default_str();
+  cmd->add_option("--max-angle", o.max_angle_degrees,
+                  "Largest angle between a shooting normal and the data's normal, degrees")
+      ->capture_default_str();
+  cmd->add_option("--detail-distance", o.detail_max_distance,
+                  "Farthest displacement measured along a sample normal (0: 2% of the size)")
+      ->capture_default_str();
+  cmd->add_option("--outlier-distance", o.outlier_distance,
+                  "Hits this far from the views' median are dropped (0: 0.5% of the size)")
+      ->capture_default_str();
+  cmd->add_option("--summary-json", args->summary_json,
+                  "Also write the summary (bytes per stream, rate, timings) as JSON");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
+  cmd->callback([args, exit_code] { *exit_code = RunEncode(*args); });
+}
+
+}  // namespace meshvid::cli

@@ -136,13 +136,13 @@ RigidTransform RigidStep(const RigidTransform& transform, std::span<const Eigen:
 /// the rigid transform on those within the tolerance. With `coarse`, the tolerance first
 /// halves down from the whole search distance (motion between frames can exceed the
 /// method's 3 x UserTol), then shrinks from `start_factor` x options.tolerance to
-/// options.tolerance by options.tolerance_shrink. Leaves the final residuals. Returns false
-/// if fewer than 3 correspondences agree at the final tolerance (the segment is unseen, or
-/// the search slid off): the caller then keeps a safe transform.
+/// options.tolerance by options.tolerance_shrink. Returns false if too few correspondences
+/// agree at the final tolerance (the segment is unseen, or the search slid off): the caller
+/// then keeps a safe transform.
 bool Refine(const BaseFrame& base, std::span<const std::uint32_t> members,
             const ShootingTarget& target, const SegmentationOptions& options,
-            float start_factor, bool coarse, RigidTransform* transform,
-            std::vector<float>* residuals) {
+            float start_factor, bool coarse, RigidTransform* transform) {
+  std::vector<float> residuals;
   std::vector<Eigen::Vector3f> hits, hit_normals, from, to, normals;
   const float fine_start = options.tolerance * std::max(1.0f, start_factor);
   float tol = fine_start;
@@ -152,13 +152,13 @@ bool Refine(const BaseFrame& base, std::span<const std::uint32_t> members,
   }
   for (;;) {
     for (int it = 0; it < std::max(1, options.icp_iterations); ++it) {
-      Correspond(base, members, *transform, target, options.shot, residuals, &hits,
+      Correspond(base, members, *transform, target, options.shot, &residuals, &hits,
                  &hit_normals);
       from.clear();
       to.clear();
       normals.clear();
       for (std::size_t k = 0; k < members.size(); ++k) {
-        if ((*residuals)[k] < tol) {
+        if (residuals[k] < tol) {
           from.push_back(base.positions[members[k]]);
           to.push_back(hits[k]);
           normals.push_back(hit_normals[k]);
@@ -175,7 +175,6 @@ bool Refine(const BaseFrame& base, std::span<const std::uint32_t> members,
     tol = tol > fine_start ? std::max(tol * 0.5f, fine_start)
                            : std::max(tol * options.tolerance_shrink, options.tolerance);
   }
-  Correspond(base, members, *transform, target, options.shot, residuals, &hits, &hit_normals);
   return solved;
 }
 
@@ -278,7 +277,7 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
       if (solvers.size() < 3) solvers = members;
       // An unseen segment holds still (extrapolating its velocity would run away).
       if (!Refine(frame0, solvers, *targets[m], options, options.initial_tolerance_factor,
-                  /*coarse=*/true, &track[m], &residuals) &&
+                  /*coarse=*/true, &track[m]) &&
           m > 0) {
         track[m] = track[m - 1];
       }
@@ -310,8 +309,7 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
     for (int m = 0; m < frames; ++m) {
       if (targets[m] == nullptr) continue;
       const RigidTransform before = track[m];
-      if (!Refine(frame0, members, *targets[m], options, 1.0f, /*coarse=*/false, &track[m],
-                  &residuals)) {
+      if (!Refine(frame0, members, *targets[m], options, 1.0f, /*coarse=*/false, &track[m])) {
         track[m] = before;
       }
     }
@@ -344,11 +342,10 @@ std::vector<RigidTransform> TrackSegments(const TriangleMesh& base,
   }
   std::vector<RigidTransform> result(initial.begin(), initial.end());
   result.resize(segment_count);
-  std::vector<float> residuals;
   for (int s = 0; s < segment_count; ++s) {
     if (members[s].size() < 3) continue;
     if (!Refine(frame, members[s], target, options, options.initial_tolerance_factor,
-                /*coarse=*/true, &result[s], &residuals)) {
+                /*coarse=*/true, &result[s])) {
       result[s] = initial[s];
     }
   }

@@ -144,12 +144,17 @@ TEST_F(ArmBlockEncode, TheBlockLandsInOneSegment) {
     ++totals[parts[nearest]];
   }
   ASSERT_GT(totals["block"], 50);
-  int top = 0;
-  for (const auto& [segment, count] : votes["block"]) top = std::max(top, count);
-  const double share = double(top) / totals["block"];
-  std::printf("block: %.1f%% of %d base vertices in one segment\n", 100 * share, totals["block"]);
-  // Measured 92%; the goal is 95% (a regression guard, not the goal).
-  EXPECT_GE(share, 0.85);
+  std::map<std::string, double> shares;
+  for (const auto& [part, part_votes] : votes) {
+    int top = 0;
+    for (const auto& [segment, count] : part_votes) top = std::max(top, count);
+    shares[part] = double(top) / totals[part];
+    std::printf("%s: %.1f%% of %d base vertices in one segment\n", part.c_str(),
+                100 * shares[part], totals[part]);
+  }
+  // Issue 4's goal for the block, met (measured 98.5%). The arm is printed for the record:
+  // measured 51.5%, the goal of 95% is not met (it splits where the data thins out).
+  EXPECT_GE(shares["block"], 0.95);
 }
 
 }  // namespace

@@ -66,7 +66,14 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("--tol-shrink must be in (0, 1)");
   }
   if (o.initial_tolerance_factor < 1) return bad("--tol-start must be at least 1");
-  if (o.occlusion_frames < 0) return bad("--occlusion-frames must be >= 0");
+  if (o.occlusion_frames < -1) return bad("--occlusion-frames must be >= 0 (or -1: automatic)");
+  if (o.seed_vertices < 0) return bad("--seed-vertices must be >= 0");
+  if (!(o.max_turn_degrees > 0 && o.max_turn_degrees <= 180)) {
+    return bad("--max-turn must be in (0, 180] degrees");
+  }
+  if (!(o.min_solved_share >= 0 && o.min_solved_share <= 1)) {
+    return bad("--min-solved must be in [0, 1]");
+  }
   if (o.max_segments < 1 || o.max_segments > 65535) return bad("--max-segments must be in 1..65535");
   if (o.max_distance < 0 || o.tolerance < 0 || o.detail_max_distance < 0 ||
       o.outlier_distance < 0 || o.base_max_error < 0) {
@@ -179,6 +186,9 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   seg.max_segments = options.max_segments;
   seg.occlusion_frames = options.occlusion_frames;
   seg.icp_iterations = options.icp_iterations;
+  seg.seed_vertices = options.seed_vertices;
+  seg.max_turn_per_frame = static_cast<float>(options.max_turn_degrees * M_PI / 180);
+  seg.min_solved_share = static_cast<float>(options.min_solved_share);
   seg.shot.max_distance = lengths.max_distance;
   seg.shot.min_abs_cos = static_cast<float>(std::cos(options.max_angle_degrees * M_PI / 180));
 
@@ -186,6 +196,11 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   const int stride = (frames + options.window - 1) / options.window;
   std::vector<int> key_frames;
   for (int t = first; t < end; t += stride) key_frames.push_back(t);
+  // A long capture of a non-rigid subject leaves few vertices rigid with their segment in
+  // all but 5 frames; by default a tenth of the key frames may disagree.
+  if (options.occlusion_frames < 0) {
+    seg.occlusion_frames = std::max(5, static_cast<int>(key_frames.size()) / 10);
+  }
   std::map<int, std::unique_ptr<ShootingTarget>> proxies;
   MESHVID_ASSIGN_OR_RETURN(proxies[first], BuildProxy(views0, options.proxy_fraction));
   MESHVID_ASSIGN_OR_RETURN(

@@ -49,9 +49,14 @@ struct EncoderOptions {
   double tolerance = 0;          ///< UserTol of eq. 6 (0: 0.5% of the diagonal)
   double initial_tolerance_factor = 3;  ///< the search starts at this x tolerance
   double tolerance_shrink = 0.8;        ///< factor applied to the tolerance per step
-  int min_segment_vertices = 12; ///< smaller pieces end the segmentation (>= 3)
+  int min_segment_vertices = 12; ///< smaller segments are not kept (>= 3)
+  int seed_vertices = 0;         ///< patch a segment is first tracked with (0: 1/40 of the base)
+  double max_turn_degrees = 20;  ///< most a segment turns between frames
+  double min_solved_share = 0.75;  ///< share of frames a kept segment must be solved in
   int max_segments = 64;         ///< most segments
-  int occlusion_frames = 5;      ///< frames a vertex may miss and stay in its segment
+  /// Frames in which a vertex's data may disagree with its segment (-1: a tenth of the
+  /// key frames, at least 5).
+  int occlusion_frames = -1;
   int icp_iterations = 3;        ///< rigid solves per tolerance step and frame
   int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
 

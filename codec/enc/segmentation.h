@@ -24,9 +24,16 @@ struct SegmentationOptions {
   float initial_tolerance_factor = 3;   ///< each window starts at this x tolerance
   float tolerance_shrink = 0.8f;        ///< per step, until the tolerance is reached
   int min_segment_vertices = 3;         ///< eq. 5 needs at least 3 points
+  /// Vertices of the patch around a seed vertex that a new segment is first tracked with
+  /// (then grown); 0: a fortieth of the base, at least 3 x min_segment_vertices.
+  int seed_vertices = 0;
   int max_segments = 64;
   int occlusion_frames = 5;             ///< frames a member may fail eq. 6 (t_occ)
   int icp_iterations = 3;               ///< correspondence + solve rounds per step
+  float max_turn_per_frame = 0.349f;    ///< radians (20 degrees) a segment may turn per frame
+  /// A segment must be solved (enough of its members agree) in at least this share of the
+  /// frames after the first, or it is dropped as lost.
+  float min_solved_share = 0.75f;
   ShotLimits shot;                      ///< correspondence search (method.md 5.1)
 };
 
@@ -45,7 +52,10 @@ struct Segmentation {
 };
 
 /// Segments `base` (posed as in frame 0 of `targets`, i.e. fitted to it) over every frame of
-/// `targets` (null entries are frames without data). Reports progress per segment attempt.
+/// `targets` (null entries are frames without data). Each segment starts as a patch around a
+/// seed vertex (the middle of the largest region still free and seen in the first frame with
+/// data), is tracked through the frames, then grows over every unsegmented vertex that
+/// follows its track. Reports progress per segment attempt.
 StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTargets targets,
                                              const SegmentationOptions& options,
                                              const ProgressCallback& progress = {});

@@ -218,10 +218,25 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--tol-shrink", o.tolerance_shrink, "Tolerance factor per step, in (0, 1)")
       ->capture_default_str();
   cmd->add_option("--occlusion-frames", o.occlusion_frames,
-                  "Frames a vertex may be missing or off and stay in its segment")
+                  "Frames in which a vertex's data may disagree with its segment and it "
+                  "stays (frames without data cost nothing; -1: a tenth of the key "
+                  "frames, at least 5)")
       ->capture_default_str();
   cmd->add_option("--min-segment", o.min_segment_vertices,
-                  "Smallest segment (vertices); a smaller one ends the segmentation")
+                  "Smallest segment kept (vertices, >= 3)")
+      ->capture_default_str();
+  cmd->add_option("--seed-vertices", o.seed_vertices,
+                  "Vertices of the patch around a seed vertex that each segment is first "
+                  "tracked with, then grown from (0: a fortieth of the base mesh)")
+      ->capture_default_str();
+  cmd->add_option("--max-turn", o.max_turn_degrees,
+                  "Most a segment may turn between frames, in degrees; a solve that turns "
+                  "it more is not believed")
+      ->capture_default_str();
+  cmd->add_option("--min-solved", o.min_solved_share,
+                  "Share of frames in which a segment's data must agree with it; a segment "
+                  "solved in fewer has lost its data and is dropped (its vertices are "
+                  "interpolated)")
       ->capture_default_str();
   cmd->add_option("--max-segments", o.max_segments, "Most segments")->capture_default_str();
   cmd->add_option("--icp-iterations", o.icp_iterations,

@@ -61,13 +61,15 @@ struct EncoderOptions {
   int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
 
   // --- detail (method.md section 6)
-  int levels = 3;                ///< subdivision levels of the displacement lattice
+  /// Subdivision levels of the displacement lattice. Measured on samba: level 3 costs 8x the
+  /// bytes of level 2 at quality 40 and gains no accuracy while the motion errs by centimetres.
+  int levels = 2;
   double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
   double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
 
   // --- coding
   VideoCodec codec = VideoCodec::kHevc;
-  int quality = 60;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
+  int quality = 40;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
   /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one

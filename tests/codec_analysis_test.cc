@@ -125,7 +125,7 @@ TEST(Segmentation, SeparatesTwoRigidBodiesAndRecoversTheirMotion) {
     const RigidTransform& moving = result->transforms[f][second_label];
     const RigidTransform truth = TwoBodies::MovingAt(f);
     // Compare where both put the moving sphere's centre and a point on it.
-    for (const Eigen::Vector3f p : {Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(1.3f, 0, 0)}) {
+    for (const Eigen::Vector3f& p : {Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(1.3f, 0, 0)}) {
       EXPECT_LT((moving.Apply(p) - truth.Apply(p)).norm(), 0.004f) << "frame " << f;
     }
     EXPECT_LT(result->transforms[f][first_label].translation.norm(), 0.004f);
@@ -235,7 +235,9 @@ TEST(Detail, FusesViewsAroundTheirMedian) {
   EXPECT_GT(*hits, 0u);
   EXPECT_LT(*hits, lattice.samples().size());
   for (float d : displacements) {
-    if (!std::isnan(d)) EXPECT_NEAR(d, -0.01f, 1e-5f);
+    if (!std::isnan(d)) {
+      EXPECT_NEAR(d, -0.01f, 1e-5f);
+    }
   }
   // A posed base of the wrong size is refused.
   EXPECT_FALSE(MeasureDisplacements(lattice, std::vector<Eigen::Vector3f>(3), views, options,

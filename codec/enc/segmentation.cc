@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -132,19 +133,21 @@ RigidTransform RigidStep(const RigidTransform& transform, std::span<const Eigen:
   return result;
 }
 
-/// Eq. 5 and 6 for one frame: from `transform`, alternately finds correspondences and solves
-/// the rigid transform on those within the tolerance. With `coarse`, the tolerance first
-/// halves down from the whole search distance (motion between frames can exceed the
-/// method's 3 x UserTol), then shrinks from `start_factor` x options.tolerance to
-/// options.tolerance by options.tolerance_shrink. Returns how many members agree within
-/// options.tolerance at the end, and how many have data at all (`seen`).
+/// How many members agree within options.tolerance (eq. 6) and how many have data at all.
 struct Agreement {
   std::size_t agree = 0;
   std::size_t seen = 0;
 };
+
+/// Eq. 5 and 6 for one frame: from `transform`, alternately finds correspondences and solves
+/// the rigid transform on those within the tolerance. With `coarse`, the tolerance first
+/// halves down from the whole search distance (motion between frames can exceed the
+/// method's 3 x UserTol), then shrinks from `start_factor` x options.tolerance to
+/// options.tolerance by options.tolerance_shrink. Returns the members' agreement with the
+/// final transform.
 Agreement Refine(const BaseFrame& base, std::span<const std::uint32_t> members,
-                   const ShootingTarget& target, const SegmentationOptions& options,
-                   float start_factor, bool coarse, RigidTransform* transform) {
+                 const ShootingTarget& target, const SegmentationOptions& options,
+                 float start_factor, bool coarse, RigidTransform* transform) {
   std::vector<float> residuals;
   std::vector<Eigen::Vector3f> hits, hit_normals, from, to, normals;
   const float fine_start = options.tolerance * std::max(1.0f, start_factor);
@@ -203,13 +206,14 @@ bool Believable(const BaseFrame& base, std::span<const std::uint32_t> members,
 }
 
 /// Solves one frame's transform of a segment from the prediction `*transform` (`previous`: the
-/// last frame's, see Believable): a fine search
-/// (from start_factor x the tolerance) and a coarse one (from the whole search distance) both
-/// run, and the believable one more members agree with wins. Returns false, leaving
-/// `*transform` as it was, when neither is believable (e.g. the segment is unseen).
-bool SolveFrame(const BaseFrame& base, std::span<const std::uint32_t> members,
-                const ShootingTarget& target, const SegmentationOptions& options,
-                float start_factor, const RigidTransform& previous, RigidTransform* transform) {
+/// last frame's, see Believable): a fine search (from start_factor x the tolerance) and a
+/// coarse one (from the whole search distance) both run, and the believable one more members
+/// agree with wins. Returns its agreement; nothing, leaving `*transform` as it was, when
+/// neither is believable (e.g. the segment is unseen).
+std::optional<Agreement> SolveFrame(const BaseFrame& base, std::span<const std::uint32_t> members,
+                                    const ShootingTarget& target,
+                                    const SegmentationOptions& options, float start_factor,
+                                    const RigidTransform& previous, RigidTransform* transform) {
   RigidTransform fine = *transform, coarse = *transform;
   const Agreement fine_agreement =
       Refine(base, members, target, options, start_factor, /*coarse=*/false, &fine);
@@ -217,11 +221,13 @@ bool SolveFrame(const BaseFrame& base, std::span<const std::uint32_t> members,
       Refine(base, members, target, options, start_factor, /*coarse=*/true, &coarse);
   const bool fine_ok = Believable(base, members, options, fine_agreement, previous, fine);
   const bool coarse_ok = Believable(base, members, options, coarse_agreement, previous, coarse);
-  if (!fine_ok && !coarse_ok) return false;
-  *transform = coarse_ok && (!fine_ok || coarse_agreement.agree > fine_agreement.agree)
-                   ? coarse
-                   : fine;
-  return true;
+  if (!fine_ok && !coarse_ok) return std::nullopt;
+  if (coarse_ok && (!fine_ok || coarse_agreement.agree > fine_agreement.agree)) {
+    *transform = coarse;
+    return coarse_agreement;
+  }
+  *transform = fine;
+  return fine_agreement;
 }
 
 /// The largest connected piece of the vertices flagged in `member` (flags of the others are
@@ -258,8 +264,21 @@ std::vector<std::uint32_t> KeepLargestPiece(
 }
 
 
+/// Breadth-first hop counts from `sources` over the mesh (-1: unreachable).
 std::vector<std::int32_t> Hops(const std::vector<std::vector<std::uint32_t>>& neighbours,
-                               std::vector<std::uint32_t> sources);
+                               std::vector<std::uint32_t> sources) {
+  std::vector<std::int32_t> hops(neighbours.size(), -1);
+  for (std::uint32_t v : sources) hops[v] = 0;
+  for (std::size_t head = 0; head < sources.size(); ++head) {
+    const std::uint32_t v = sources[head];
+    for (std::uint32_t w : neighbours[v]) {
+      if (hops[w] >= 0) continue;
+      hops[w] = hops[v] + 1;
+      sources.push_back(w);
+    }
+  }
+  return hops;
+}
 
 /// What every stage of one segmentation shares.
 struct SegmentContext {
@@ -306,22 +325,6 @@ constexpr std::size_t kAutoSeedDivisor = 40;
 constexpr int kAttemptsPerSegment = 3;
 /// Most rounds of growth (score every unsegmented vertex, solve again) per segment.
 constexpr int kGrowRounds = 16;
-
-/// Breadth-first hop counts from `sources` over the mesh (-1: unreachable).
-std::vector<std::int32_t> Hops(const std::vector<std::vector<std::uint32_t>>& neighbours,
-                               std::vector<std::uint32_t> sources) {
-  std::vector<std::int32_t> hops(neighbours.size(), -1);
-  for (std::uint32_t v : sources) hops[v] = 0;
-  for (std::size_t head = 0; head < sources.size(); ++head) {
-    const std::uint32_t v = sources[head];
-    for (std::uint32_t w : neighbours[v]) {
-      if (hops[w] >= 0) continue;
-      hops[w] = hops[v] + 1;
-      sources.push_back(w);
-    }
-  }
-  return hops;
-}
 
 /// The seedable, unsegmented vertex farthest (in mesh hops) from every segmented or
 /// unseedable one: the middle of the largest region still free. -1 if none is left.
@@ -386,7 +389,7 @@ std::vector<std::uint32_t> GrowPatch(const std::vector<std::vector<std::uint32_t
 }
 
 /// Follows a seed patch through the frames in order (eq. 5 and 6 over a growing window,
-/// warm-started by constant velocity): members whose data disagrees in more than
+/// warm-started by PredictSegment): members whose data disagrees in more than
 /// options.occlusion_frames frames, or never agrees, leave; the largest connected piece is
 /// kept. Returns the surviving members (fewer than 3: the patch could not be followed).
 std::vector<std::uint32_t> TrackPatch(const SegmentContext& context,
@@ -407,8 +410,6 @@ std::vector<std::uint32_t> TrackPatch(const SegmentContext& context,
     (*track)[m] = PredictSegment(context, *track, m);
     const ShootingTarget* target = context.targets[m];
     if (target == nullptr) continue;
-    // The base is fitted to frame 0: its transform stays the identity (a search there can
-    // only slide a small patch along the surface).
     // Solve on the members that agreed when last seen: a piece that has parted from the
     // segment's motion no longer pulls the solution, even before it is dropped.
     solvers.clear();
@@ -416,7 +417,8 @@ std::vector<std::uint32_t> TrackPatch(const SegmentContext& context,
       if (agreeing[v]) solvers.push_back(v);
     }
     if (solvers.size() < 3) solvers = members;
-    // An unseen segment holds still (extrapolating its velocity would run away).
+    // The base is fitted to frame 0: its transform stays the identity (a search there can
+    // only slide a small patch along the surface). An unsolved segment is carried.
     if (m > 0 && !SolveFrame(context.base, solvers, *target, options,
                              options.initial_tolerance_factor, (*track)[m - 1], &(*track)[m])) {
       (*track)[m] = Carried(context, *track, m);
@@ -441,8 +443,9 @@ std::vector<std::uint32_t> TrackPatch(const SegmentContext& context,
 }
 
 /// Eq. 5 once more on a segment's final members, frame after frame from frame 0's identity:
-/// each frame starts from the constant-velocity prediction, and holds the last frame's
-/// transform where no solve is believable.
+/// each frame is solved from both the growth's track and PredictSegment's prediction (the
+/// more members agree, the better), and is Carried where neither solve is believable.
+/// Returns the number of frames solved.
 int FollowSegment(const SegmentContext& context, std::span<const std::uint32_t> members,
                   std::vector<RigidTransform>* track) {
   int solved = 0;
@@ -455,26 +458,19 @@ int FollowSegment(const SegmentContext& context, std::span<const std::uint32_t> 
     if (target == nullptr) continue;
     // Where the growth's track is better than the prediction (it saw more), start there.
     RigidTransform from_track = (*track)[m];
-    const bool tracked_ok = SolveFrame(context.base, members, *target, context.options, 1.0f,
-                                       previous, &from_track);
+    const std::optional<Agreement> tracked = SolveFrame(context.base, members, *target,
+                                                        context.options, 1.0f, previous,
+                                                        &from_track);
     RigidTransform from_prediction = followed[m];
-    const bool predicted_ok =
+    const std::optional<Agreement> predicted =
         SolveFrame(context.base, members, *target, context.options,
                    context.options.initial_tolerance_factor, previous, &from_prediction);
-    if (!tracked_ok && !predicted_ok) {
+    if (!tracked && !predicted) {
       followed[m] = Carried(context, followed, m);
       continue;
     }
     ++solved;
-    std::vector<float> residuals;
-    std::vector<Eigen::Vector3f> hits, normals;
-    auto agree = [&](const RigidTransform& t) {
-      Correspond(context.base, members, t, *target, context.options.shot, &residuals, &hits,
-                 &normals);
-      return std::count_if(residuals.begin(), residuals.end(),
-                           [&](float r) { return r < context.options.tolerance; });
-    };
-    followed[m] = !predicted_ok || (tracked_ok && agree(from_track) >= agree(from_prediction))
+    followed[m] = !predicted || (tracked && tracked->agree >= predicted->agree)
                       ? from_track
                       : from_prediction;
   }

@@ -61,8 +61,9 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
                                              const ProgressCallback& progress = {});
 
 /// Tracks fixed segments through one more frame: starting from `initial[segment]`, solves each
-/// segment's transform on its members' correspondences in `target` (a few ICP rounds at
-/// the tolerance). A segment with fewer than 3 correspondences keeps its initial transform.
+/// segment's transform on its members' correspondences in `target` (a fine and a coarse
+/// search). A segment whose solve is not believable (too few members agree, or it jumped or
+/// turned too far) keeps its initial transform.
 std::vector<RigidTransform> TrackSegments(const TriangleMesh& base,
                                           std::span<const std::int32_t> labels,
                                           int segment_count, const ShootingTarget& target,

@@ -41,6 +41,25 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("mpeg2"), std::string::npos) << run.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+  // By default the whole base surface is decoded; --hide-unseen writes the mask of base
+  // triangles no view saw.
+  for (const char* flag : {"", " --hide-unseen"}) {
+    run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                  "' -q" + flag,
+                              dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    auto decoder = MvidDecoder::OpenFile(out);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+    const auto& mask = (*decoder)->motion().surface_triangles;
+    if (*flag == '\0') {
+      EXPECT_TRUE(mask.empty());
+    } else {
+      ASSERT_EQ(mask.size(), (*decoder)->base_mesh().triangle_count());
+      EXPECT_GT(std::count(mask.begin(), mask.end(), 0), 0) << "the back was never seen";
+      EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 0);
+    }
+  }
+  std::filesystem::remove(out);
   run = testing::RunMeshvid("encode --help", dir);
   EXPECT_EQ(run.exit_code, 0);
   EXPECT_NE(run.out.find("--occlusion-frames"), std::string::npos);

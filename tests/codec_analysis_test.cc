@@ -1,5 +1,5 @@
 // The encoder's analysis stages: normal shooting, rigid fitting, the multi-frame
-// segmentation, blend weights, track smoothing, displacement measurement and hole filling.
+// segmentation, patch tracking, blend weights, track smoothing, displacement measurement and hole filling.
 #include <cmath>
 #include <map>
 #include <memory>
@@ -10,6 +10,7 @@
 #include "codec/enc/detail.h"
 #include "codec/enc/motion_blend.h"
 #include "codec/enc/normal_shooting.h"
+#include "codec/enc/patch_tracking.h"
 #include "codec/enc/segmentation.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
@@ -155,6 +156,121 @@ TEST(Segmentation, FailsClearlyWhenTheBaseMissesTheData) {
   SegmentationOptions bad = TestSegmentationOptions();
   bad.tolerance = 0;
   EXPECT_FALSE(SegmentPiecewiseRigid(scene.base, scene.Targets(), bad).ok());
+}
+
+/// Labels with the still body as segment 0 and the moving one unregistered.
+std::vector<std::int32_t> StillBodyOnly(const TwoBodies& scene) {
+  std::vector<std::int32_t> labels(scene.base.vertex_count(), kUnregistered);
+  for (std::size_t v = 0; v < scene.first_body_vertices; ++v) labels[v] = 0;
+  return labels;
+}
+
+TEST(PatchTracking, SplitsUnregisteredRegionsIntoConnectedPatches) {
+  const TwoBodies scene(1);
+  std::vector<std::int32_t> labels = StillBodyOnly(scene);
+  PatchTrackingOptions options;
+  options.patch_vertices = 40;
+  const std::size_t free = scene.base.vertex_count() - scene.first_body_vertices;
+  const int total = PartitionUnregistered(scene.base, 1, 12, options, &labels);
+  EXPECT_EQ(total - 1, int(free / 40));
+  std::vector<std::size_t> sizes(total, 0);
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    if (v < scene.first_body_vertices) {
+      ASSERT_EQ(labels[v], 0) << "segment vertices keep their label";
+    } else {
+      ASSERT_GE(labels[v], 1) << "vertex " << v << " joined no patch";
+      ++sizes[labels[v]];
+    }
+  }
+  for (int p = 1; p < total; ++p) {
+    EXPECT_GT(sizes[p], 10u) << "patch " << p;
+    EXPECT_LT(sizes[p], 100u) << "patch " << p;
+  }
+  // Every patch is connected: a flood fill from one member reaches all of them.
+  const auto neighbours = VertexNeighbours(scene.base);
+  for (int p = 1; p < total; ++p) {
+    std::vector<char> seen(labels.size(), 0);
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t v = 0; v < labels.size() && stack.empty(); ++v) {
+      if (labels[v] == p) stack.push_back(v), seen[v] = 1;
+    }
+    std::size_t reached = 0;
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      ++reached;
+      for (std::uint32_t w : neighbours[v]) {
+        if (labels[w] == p && !seen[w]) seen[w] = 1, stack.push_back(w);
+      }
+    }
+    EXPECT_EQ(reached, sizes[p]) << "patch " << p << " is in pieces";
+  }
+  // The segment budget caps the patches; regions below the minimum stay unregistered.
+  labels = StillBodyOnly(scene);
+  options.max_segments = 4;
+  EXPECT_EQ(PartitionUnregistered(scene.base, 1, 12, options, &labels), 4);
+  labels = StillBodyOnly(scene);
+  EXPECT_EQ(PartitionUnregistered(scene.base, 1, int(free) + 1, options, &labels), 1);
+  EXPECT_EQ(labels.back(), kUnregistered);
+}
+
+TEST(PatchTracking, PatchesFollowAMovingBodyTogether) {
+  const int frames = 12;
+  const TwoBodies scene(frames);
+  std::vector<std::int32_t> labels = StillBodyOnly(scene);
+  PatchTrackingOptions options;
+  options.patch_vertices = 40;
+  const int total = PartitionUnregistered(scene.base, 1, 12, options, &labels);
+  ASSERT_GT(total, 3);
+  std::vector<std::vector<RigidTransform>> transforms(frames, std::vector<RigidTransform>(1));
+  const Status status = TrackPatches(scene.base, labels, 1, total, scene.Targets(),
+                                     TestSegmentationOptions(), options, &transforms);
+  ASSERT_TRUE(status.ok()) << status.ToString();
+  float worst = 0;
+  for (int f = 0; f < frames; ++f) {
+    ASSERT_EQ(transforms[f].size(), std::size_t(total));
+    EXPECT_EQ(transforms[f][0].translation.norm(), 0.0f) << "the fixed segment is kept";
+    const RigidTransform truth = TwoBodies::MovingAt(f);
+    for (std::size_t v = scene.first_body_vertices; v < labels.size(); ++v) {
+      const Eigen::Vector3f& p = scene.base.positions[v];
+      worst = std::max(worst, (transforms[f][labels[v]].Apply(p) - truth.Apply(p)).norm());
+    }
+  }
+  // The body turns by 0.9 rad and rises by 0.17 over the frames; every vertex stays within
+  // the segmentation tolerance (0.01) of where it belongs.
+  EXPECT_LT(worst, 0.01f);
+  // Mismatched inputs are reported, not guessed at.
+  std::vector<std::vector<RigidTransform>> short_tracks(frames - 1);
+  EXPECT_FALSE(TrackPatches(scene.base, labels, 1, total, scene.Targets(),
+                            TestSegmentationOptions(), options, &short_tracks)
+                   .ok());
+}
+
+TEST(PatchTracking, PatchesMovingWithASegmentJoinIt) {
+  const int frames = 8;
+  const TwoBodies scene(frames);
+  // Segment 0: the still body; segment 1: the moving body's half beyond x = 1; the other
+  // half is patched and tracked, and should rejoin segment 1 (and only it).
+  std::vector<std::int32_t> labels = StillBodyOnly(scene);
+  for (std::size_t v = scene.first_body_vertices; v < labels.size(); ++v) {
+    if (scene.base.positions[v].x() > 1.0f) labels[v] = 1;
+  }
+  std::vector<std::vector<RigidTransform>> transforms(frames);
+  for (int f = 0; f < frames; ++f) transforms[f] = {RigidTransform{}, TwoBodies::MovingAt(f)};
+  PatchTrackingOptions options;
+  options.patch_vertices = 20;
+  const int total = PartitionUnregistered(scene.base, 2, 12, options, &labels);
+  ASSERT_GT(total, 3);
+  ASSERT_TRUE(TrackPatches(scene.base, labels, 2, total, scene.Targets(),
+                           TestSegmentationOptions(), options, &transforms)
+                  .ok());
+  const int merged = MergePatchesIntoSegments(scene.base, 2, total, TestSegmentationOptions(),
+                                              &labels, &transforms);
+  EXPECT_EQ(merged, 2);
+  for (const auto& frame : transforms) EXPECT_EQ(frame.size(), 2u);
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    ASSERT_EQ(labels[v], v < scene.first_body_vertices ? 0 : 1) << "vertex " << v;
+  }
 }
 
 TEST(MotionBlend, InterpolatesUnregisteredVerticesBetweenSegments) {

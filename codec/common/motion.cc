@@ -5,6 +5,20 @@
 
 namespace meshvid {
 
+RigidTransform Compose(const RigidTransform& a, const RigidTransform& b) {
+  RigidTransform result;
+  result.rotation = (a.rotation * b.rotation).normalized();
+  result.translation = a.rotation * b.translation + a.translation;
+  return result;
+}
+
+RigidTransform Inverse(const RigidTransform& t) {
+  RigidTransform result;
+  result.rotation = t.rotation.conjugate();
+  result.translation = -(result.rotation * t.translation);
+  return result;
+}
+
 Status ValidateMotionModel(const MotionModel& model, std::size_t vertex_count) {
   if (model.segment_count == 0) return CorruptError("motion: no segments");
   if (model.blends.size() != vertex_count) {

@@ -25,6 +25,12 @@ struct RigidTransform {
   Eigen::Vector3f Apply(const Eigen::Vector3f& x) const { return rotation * x + translation; }
 };
 
+/// a after b: x -> a(b(x)).
+RigidTransform Compose(const RigidTransform& a, const RigidTransform& b);
+
+/// The transform undoing t.
+RigidTransform Inverse(const RigidTransform& t);
+
 /// One influence of a segment on a vertex.
 struct BlendInfluence {
   std::uint32_t segment = 0;

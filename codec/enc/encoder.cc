@@ -13,6 +13,7 @@
 #include "codec/enc/detail.h"
 #include "codec/enc/motion_blend.h"
 #include "codec/enc/normal_shooting.h"
+#include "codec/enc/patch_tracking.h"
 #include "codec/enc/segmentation.h"
 #include "codec/enc/surface_fusion.h"
 
@@ -74,6 +75,8 @@ Status CheckOptions(const EncoderOptions& o) {
   if (!(o.min_solved_share >= 0 && o.min_solved_share <= 1)) {
     return bad("--min-solved must be in [0, 1]");
   }
+  if (o.patch_vertices < 0) return bad("--patch-vertices must be >= 0");
+  if (!(o.patch_stiffness > 0)) return bad("--stiffness must be positive");
   if (o.max_segments < 1 || o.max_segments > 65535) return bad("--max-segments must be in 1..65535");
   if (o.max_distance < 0 || o.tolerance < 0 || o.detail_max_distance < 0 ||
       o.outlier_distance < 0 || o.base_max_error < 0) {
@@ -232,6 +235,23 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   std::size_t registered = 0;
   for (std::int32_t label : segmentation.labels) registered += label >= 0;
   summary.registered_share = double(registered) / double(base.vertex_count());
+  // Patches over the unregistered vertices, tracked jointly through the key frames.
+  std::vector<std::int32_t> labels = segmentation.labels;
+  int segment_count = segmentation.segment_count;
+  if (options.patch_vertices > 0) {
+    PatchTrackingOptions patching;
+    patching.patch_vertices = options.patch_vertices;
+    patching.max_segments = options.max_segments;
+    patching.stiffness = static_cast<float>(options.patch_stiffness);
+    segment_count = PartitionUnregistered(base, segmentation.segment_count,
+                                          options.min_segment_vertices, patching, &labels);
+    MESHVID_RETURN_IF_ERROR(TrackPatches(base, labels, segmentation.segment_count,
+                                         segment_count, targets, seg, patching,
+                                         &segmentation.transforms, progress));
+    segment_count = MergePatchesIntoSegments(base, segmentation.segment_count, segment_count,
+                                             seg, &labels, &segmentation.transforms);
+  }
+  summary.patches = segment_count - segmentation.segment_count;
   std::vector<std::vector<RigidTransform>> tracks(frames);
   for (std::size_t k = 0; k < key_frames.size(); ++k) {
     tracks[key_frames[k] - first] = segmentation.transforms[k];
@@ -247,14 +267,13 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       MESHVID_ASSIGN_OR_RETURN(auto proxy, BuildProxy(views, options.proxy_fraction));
       const auto& previous = tracks[t - first - 1];
       tracks[t - first] =
-          proxy ? TrackSegments(base, segmentation.labels, segmentation.segment_count, *proxy,
-                                previous, seg)
+          proxy ? TrackSegments(base, labels, segment_count, *proxy, previous, seg)
                 : previous;
     }
   }
   SmoothTracks(options.track_smoothing, &tracks);
-  MotionModel motion =
-      BlendWeightsFromLabels(base, segmentation.labels, segmentation.segment_count);
+  MotionModel motion = BlendWeightsFromLabels(base, labels, segment_count, /*smoothing=*/4,
+                                              /*soft_from=*/segmentation.segment_count);
   // The surface: base triangles some view saw (two corners or more) in some key frame. The
   // rest is hidden, as the method leaves pixels that exist in no frame unfilled.
   {
@@ -281,6 +300,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       surface += seen >= 2;
     }
     summary.surface_share = double(surface) / double(base.triangle_count());
+    if (!options.hide_unseen) motion.surface_triangles.clear();
   }
   proxies.clear();
   summary.seconds_segmentation = SecondsSince(start);

@@ -59,6 +59,10 @@ struct EncoderOptions {
   int occlusion_frames = -1;
   int icp_iterations = 3;        ///< rigid solves per tolerance step and frame
   int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
+  /// Unregistered vertices are split into patches of this many vertices, tracked jointly
+  /// (patch_tracking.h); 0: interpolated from the segments, as in the paper.
+  int patch_vertices = 40;
+  double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
 
   // --- detail (method.md section 6)
   /// Subdivision levels of the displacement lattice. Measured on samba: level 3 costs 8x the
@@ -66,6 +70,10 @@ struct EncoderOptions {
   int levels = 2;
   double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
   double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
+  /// Leave out of the decoded surface the base triangles no view saw in any frame (the
+  /// method's unfilled pixels). Off by default: the whole base surface is decoded, its
+  /// unseen parts carried by the motion and filled detail, as per-frame fusion closes holes.
+  bool hide_unseen = false;
 
   // --- coding
   VideoCodec codec = VideoCodec::kHevc;
@@ -92,6 +100,7 @@ struct EncodeSummary {
   std::size_t base_vertices = 0;
   std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
   int segments = 0;
+  int patches = 0;              ///< patches over the unregistered vertices (after the segments)
   double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view (the rest are hidden)
   double filled_share = 0;      ///< displacement samples filled by interpolation

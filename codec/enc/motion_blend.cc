@@ -28,7 +28,8 @@ VertexBlend TopInfluences(std::span<const float> weights) {
 }  // namespace
 
 MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
-                                   int segment_count, int smoothing) {
+                                   int segment_count, int smoothing, int soft_from) {
+  if (soft_from < 0) soft_from = segment_count;
   const std::size_t n = base.vertex_count();
   const std::size_t s = static_cast<std::size_t>(std::max(1, segment_count));
   const auto neighbours = VertexNeighbours(base);
@@ -37,7 +38,8 @@ MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std
   for (std::size_t v = 0; v < n; ++v) {
     if (labels[v] >= 0 && labels[v] < segment_count) {
       weights[v * s + labels[v]] = 1;
-      known[v] = registered[v] = 1;
+      known[v] = 1;
+      registered[v] = labels[v] < soft_from;
     }
   }
   // Spread outwards ring by ring: each new vertex averages its known neighbours.
@@ -88,7 +90,7 @@ MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std
     float best = std::numeric_limits<float>::infinity();
     std::int32_t segment = 0;
     for (std::size_t w = 0; w < n; ++w) {
-      if (!registered[w]) continue;
+      if (labels[w] < 0 || labels[w] >= segment_count) continue;
       const float d = (base.positions[v] - base.positions[w]).squaredNorm();
       if (d < best) best = d, segment = labels[w];
     }

@@ -18,9 +18,11 @@ namespace meshvid {
 /// unregistered one averages the weights of its mesh neighbours, spreading outwards from the
 /// registered vertices (then `smoothing` Jacobi passes over the unregistered ones), keeping
 /// the kMaxInfluences largest weights. Vertices in pieces of the mesh without any registered
-/// vertex take the segment of the nearest registered vertex in space.
+/// vertex take the segment of the nearest registered vertex in space. Vertices of segments
+/// `soft_from` and above (the patches of patch_tracking.h; -1: none) start with their segment
+/// and are smoothed like the interpolated ones, so patches blend into their neighbours.
 MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
-                                   int segment_count, int smoothing = 4);
+                                   int segment_count, int smoothing = 4, int soft_from = -1);
 
 /// Smooths tracks `transforms[frame][segment]` over time: `passes` times, each frame's
 /// transform becomes the average of frames t-1, t, t+1 (rotations as normalised quaternion

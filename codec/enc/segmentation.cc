@@ -15,21 +15,6 @@ namespace {
 
 constexpr float kNoResidual = std::numeric_limits<float>::infinity();
 
-/// a after b: x -> a(b(x)).
-RigidTransform Compose(const RigidTransform& a, const RigidTransform& b) {
-  RigidTransform result;
-  result.rotation = (a.rotation * b.rotation).normalized();
-  result.translation = a.rotation * b.translation + a.translation;
-  return result;
-}
-
-RigidTransform Inverse(const RigidTransform& t) {
-  RigidTransform result;
-  result.rotation = t.rotation.conjugate();
-  result.translation = -(result.rotation * t.translation);
-  return result;
-}
-
 /// Constant-velocity prediction of frame m from frames m-1 and m-2 (the warm start of a
 /// grown window; the method copies frame m-1, which fast motion outruns).
 RigidTransform Predict(const std::vector<RigidTransform>& transforms, int m) {

@@ -50,6 +50,11 @@ std::string Kilobytes(double bytes) {
   return text;
 }
 
+/// The file's rate at the capture's frame rate.
+double MbitPerSecond(const EncodeSummary& s) {
+  return double(s.stats.total_bytes) * 8.0 / std::max(1, s.frames) * s.frame_rate / 1e6;
+}
+
 nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, double seconds) {
   const double frames = std::max(1, s.frames);
   nlohmann::json j;
@@ -65,6 +70,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["base_vertices"] = s.base_vertices;
   j["samples_per_frame"] = s.samples_per_frame;
   j["segments"] = s.segments;
+  j["patches"] = s.patches;
   j["registered_share"] = s.registered_share;
   j["surface_share"] = s.surface_share;
   j["filled_share"] = s.filled_share;
@@ -77,7 +83,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["bytes_transforms"] = s.stats.transform_bytes;
   j["bytes_video"] = s.stats.video_bytes;
   j["bytes_per_frame"] = double(s.stats.total_bytes) / frames;
-  j["mbit_per_s"] = double(s.stats.total_bytes) * 8.0 / frames * s.frame_rate / 1e6;
+  j["mbit_per_s"] = MbitPerSecond(s);
   j["seconds"] = seconds;
   j["frames_per_second"] = seconds > 0 ? frames / seconds : 0.0;
   j["seconds_by_stage"] = {{"base", s.seconds_base},
@@ -94,18 +100,19 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
   std::fprintf(stderr,
                "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
-               "  segments      %d rigid pieces, %.1f%% of base vertices registered, %.1f%% of base "
-               "triangles seen\n"
+               "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d patches "
+               "over the rest; %.1f%% of base triangles seen\n"
                "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
                "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
                "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
                s.frames, s.views, args.capture.c_str(), args.output.c_str(), seconds,
                frames / seconds, s.base_vertices, s.samples_per_frame, args.options.levels,
-               s.segments, 100 * s.registered_share, 100 * s.surface_share, 100 * s.hit_share, 100 * s.filled_share,
+               s.segments, 100 * s.registered_share, s.patches, 100 * s.surface_share,
+               100 * s.hit_share, 100 * s.filled_share,
                Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
                Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),
                Kilobytes(b.total_bytes).c_str(), Kilobytes(b.total_bytes / frames).c_str(),
-               b.total_bytes * 8.0 / frames * s.frame_rate / 1e6, s.frame_rate);
+               MbitPerSecond(s), s.frame_rate);
 }
 
 int RunEncode(EncodeArguments args) {
@@ -245,6 +252,15 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--smoothing", o.track_smoothing,
                   "Passes of (t-1, t, t+1) smoothing of the rigid tracks")
       ->capture_default_str();
+  cmd->add_option("--patch-vertices", o.patch_vertices,
+                  "Vertices per patch that the segmentation's unregistered vertices are split "
+                  "into; patches are tracked jointly, held together where they meet (0: "
+                  "interpolate those vertices from the segments, as the paper does)")
+      ->capture_default_str();
+  cmd->add_option("--stiffness", o.patch_stiffness,
+                  "Weight of neighbouring patches and segments agreeing where they meet, "
+                  "against the data")
+      ->capture_default_str();
   cmd->add_option("--proxy-fraction", o.proxy_fraction,
                   "Share of each view's vertices kept in its correspondence proxy")
       ->capture_default_str();
@@ -261,6 +277,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--outlier-distance", o.outlier_distance,
                   "Hits this far from the views' median are dropped (0: 0.5% of the size)")
       ->capture_default_str();
+  cmd->add_flag("--hide-unseen", o.hide_unseen,
+                "Leave out of the decoded surface the base triangles no view saw in any frame "
+                "(default: decode the whole base surface, unseen parts moved and filled)");
   cmd->add_option("--summary-json", args->summary_json,
                   "Also write the summary (bytes per stream, rate, timings) as JSON");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");

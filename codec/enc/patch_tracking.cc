@@ -1,0 +1,397 @@
+#include "codec/enc/patch_tracking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <tbb/parallel_for.h>
+
+namespace meshvid {
+namespace {
+
+constexpr float kFar = std::numeric_limits<float>::infinity();
+
+/// Dijkstra along the mesh's edges from `source`, restricted to vertices with
+/// region[v] == region_id, lowering `distance` (and setting `owner` to `owner_id`) where the
+/// new path is shorter.
+void RelaxFrom(const TriangleMesh& base, const std::vector<std::vector<std::uint32_t>>& neighbours,
+               const std::vector<std::int32_t>& region, std::int32_t region_id,
+               std::uint32_t source, std::int32_t owner_id, std::vector<float>* distance,
+               std::vector<std::int32_t>* owner) {
+  using Entry = std::pair<float, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  (*distance)[source] = 0;
+  (*owner)[source] = owner_id;
+  queue.push({0.0f, source});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > (*distance)[v]) continue;
+    for (std::uint32_t w : neighbours[v]) {
+      if (region[w] != region_id) continue;
+      const float next = d + (base.positions[v] - base.positions[w]).norm();
+      if (next < (*distance)[w]) {
+        (*distance)[w] = next;
+        (*owner)[w] = owner_id;
+        queue.push({next, w});
+      }
+    }
+  }
+}
+
+/// The skew matrix [q]x with [q]x w = q x w.
+Eigen::Matrix3d Skew(const Eigen::Vector3d& q) {
+  Eigen::Matrix3d m;
+  m << 0, -q.z(), q.y(), q.z(), 0, -q.x(), -q.y(), q.x(), 0;
+  return m;
+}
+
+/// Weight of the point-to-point term beside the point-to-plane one (as in the segmentation).
+constexpr double kPointWeight = 0.05;
+/// Weight of keeping each patch where it was predicted, per unit of its size: small, so it
+/// only decides what neither data nor neighbours do.
+constexpr double kPriorWeight = 0.01;
+
+/// A base edge between two different pieces, at least one of them a patch.
+struct Seam {
+  std::uint32_t u, w;
+  std::int32_t a, b;
+};
+
+/// Everything about the patches that does not change between frames.
+struct PatchLayout {
+  int fixed_count = 0, patch_count = 0;
+  std::vector<std::vector<std::uint32_t>> members;  ///< per patch
+  std::vector<Eigen::Vector3f> centres;             ///< rest centroid per patch
+  std::vector<double> radii;                        ///< rest RMS radius per patch
+  std::vector<Seam> seams;
+  std::vector<Eigen::Vector3f> normals;             ///< rest vertex normals
+};
+
+/// Constant-velocity prediction of frame k from k-1 and k-2.
+RigidTransform PredictPatch(const std::vector<std::vector<RigidTransform>>& transforms, int k,
+                            int s) {
+  if (k < 2) return transforms[k - 1][s];
+  const RigidTransform step = Compose(transforms[k - 1][s], Inverse(transforms[k - 2][s]));
+  return Compose(step, transforms[k - 1][s]);
+}
+
+/// One joint Gauss-Newton step of every patch's transform in `frame` (indices fixed_count..):
+/// point-to-plane data terms on hits within `tolerance`, seam agreement, a weak prior.
+void JointStep(const TriangleMesh& base, const PatchLayout& layout, const ShootingTarget& target,
+               const ShotLimits& shot, float tolerance, float stiffness,
+               std::vector<RigidTransform>* frame) {
+  const int np = layout.patch_count;
+  const int fixed = layout.fixed_count;
+  std::vector<Eigen::Vector3d> centres(np);
+  for (int p = 0; p < np; ++p) {
+    centres[p] = (*frame)[fixed + p].Apply(layout.centres[p]).cast<double>();
+  }
+  // Per patch: its 6x6 block and right-hand side from its data.
+  std::vector<Eigen::Matrix<double, 6, 6>> diagonal(np, Eigen::Matrix<double, 6, 6>::Zero());
+  std::vector<Eigen::Matrix<double, 6, 1>> rhs(np, Eigen::Matrix<double, 6, 1>::Zero());
+  tbb::parallel_for(0, np, [&](int p) {
+    const RigidTransform& t = (*frame)[fixed + p];
+    for (std::uint32_t v : layout.members[p]) {
+      const Eigen::Vector3f origin = t.Apply(base.positions[v]);
+      const Eigen::Vector3f direction = t.rotation * layout.normals[v];
+      const ShotHit hit = target.ShootHit(origin, direction, shot);
+      if (std::isnan(hit.distance) || std::abs(hit.distance) >= tolerance) continue;
+      const Eigen::Vector3d x = origin.cast<double>();
+      const Eigen::Vector3d q = x - centres[p];
+      const Eigen::Vector3d n = hit.normal.cast<double>();
+      const Eigen::Vector3d r = x - (origin + hit.distance * direction).cast<double>();
+      Eigen::Matrix<double, 6, 1> j;
+      j << q.cross(n), n;
+      diagonal[p] += j * j.transpose();
+      rhs[p] += j * n.dot(r);
+      Eigen::Matrix<double, 3, 6> jp;
+      jp << -Skew(q), Eigen::Matrix3d::Identity();
+      diagonal[p] += kPointWeight * jp.transpose() * jp;
+      rhs[p] += kPointWeight * jp.transpose() * r;
+    }
+    Eigen::Matrix<double, 6, 1> prior;
+    const double r2 = layout.radii[p] * layout.radii[p];
+    prior << r2, r2, r2, 1, 1, 1;
+    diagonal[p].diagonal() += kPriorWeight * double(layout.members[p].size()) * prior;
+  });
+  // Seams: the two pieces should put each seam vertex at the same place.
+  std::vector<Eigen::Triplet<double>> triplets;
+  const double w = stiffness;
+  for (const Seam& seam : layout.seams) {
+    const RigidTransform& ta = (*frame)[seam.a];
+    const RigidTransform& tb = (*frame)[seam.b];
+    const int pa = seam.a - fixed, pb = seam.b - fixed;  // negative: a fixed segment
+    for (std::uint32_t v : {seam.u, seam.w}) {
+      const Eigen::Vector3d xa = ta.Apply(base.positions[v]).cast<double>();
+      const Eigen::Vector3d xb = tb.Apply(base.positions[v]).cast<double>();
+      const Eigen::Vector3d r = xa - xb;
+      Eigen::Matrix<double, 3, 6> ja, jb;
+      if (pa >= 0) ja << -Skew(xa - centres[pa]), Eigen::Matrix3d::Identity();
+      if (pb >= 0) jb << Skew(xb - centres[pb]), -Eigen::Matrix3d::Identity();
+      if (pa >= 0) {
+        diagonal[pa] += w * ja.transpose() * ja;
+        rhs[pa] += w * ja.transpose() * r;
+      }
+      if (pb >= 0) {
+        diagonal[pb] += w * jb.transpose() * jb;
+        rhs[pb] += w * jb.transpose() * r;
+      }
+      if (pa >= 0 && pb >= 0) {
+        const Eigen::Matrix<double, 6, 6> off = w * ja.transpose() * jb;
+        for (int i = 0; i < 6; ++i) {
+          for (int k = 0; k < 6; ++k) {
+            triplets.emplace_back(6 * pa + i, 6 * pb + k, off(i, k));
+            triplets.emplace_back(6 * pb + k, 6 * pa + i, off(i, k));
+          }
+        }
+      }
+    }
+  }
+  Eigen::VectorXd b(6 * np);
+  for (int p = 0; p < np; ++p) {
+    // Levenberg-Marquardt damping keeps directions nothing constrains from running off.
+    diagonal[p].diagonal().array() += 1e-3 * diagonal[p].trace() / 6.0 + 1e-12;
+    for (int i = 0; i < 6; ++i) {
+      for (int k = 0; k < 6; ++k) triplets.emplace_back(6 * p + i, 6 * p + k, diagonal[p](i, k));
+    }
+    b.segment<6>(6 * p) = -rhs[p];
+  }
+  Eigen::SparseMatrix<double> a(6 * np, 6 * np);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+  if (solver.info() != Eigen::Success) return;
+  const Eigen::VectorXd x = solver.solve(b);
+  if (!x.allFinite()) return;
+  for (int p = 0; p < np; ++p) {
+    const Eigen::Vector3d omega = x.segment<3>(6 * p), d = x.segment<3>(6 * p + 3);
+    const double angle = omega.norm();
+    const Eigen::Quaterniond step = angle > 0
+                                        ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle))
+                                        : Eigen::Quaterniond::Identity();
+    RigidTransform& t = (*frame)[fixed + p];
+    // x -> step (T x - centre) + centre + d
+    t.rotation = (step.cast<float>() * t.rotation).normalized();
+    t.translation =
+        (step * (t.translation.cast<double>() - centres[p]) + centres[p] + d).cast<float>();
+  }
+}
+
+}  // namespace
+
+int PartitionUnregistered(const TriangleMesh& base, int segment_count, int min_patch_vertices,
+                          const PatchTrackingOptions& options, std::vector<std::int32_t>* labels) {
+  const std::size_t n = base.vertex_count();
+  const int budget = options.max_segments - segment_count;
+  if (budget <= 0 || options.patch_vertices < 1) return segment_count;
+  const auto neighbours = VertexNeighbours(base);
+  // Connected regions of unregistered vertices.
+  std::vector<std::int32_t> region(n, -1);
+  std::vector<std::vector<std::uint32_t>> regions;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if ((*labels)[v] >= 0 || region[v] >= 0) continue;
+    const auto id = static_cast<std::int32_t>(regions.size());
+    regions.emplace_back();
+    std::vector<std::uint32_t> stack{v};
+    region[v] = id;
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      regions[id].push_back(u);
+      for (std::uint32_t w : neighbours[u]) {
+        if ((*labels)[w] < 0 && region[w] < 0) {
+          region[w] = id;
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+  // Patches per region: in proportion to its size, largest regions first within the budget.
+  std::vector<std::size_t> order(regions.size());
+  for (std::size_t r = 0; r < order.size(); ++r) order[r] = r;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return regions[a].size() > regions[b].size(); });
+  std::size_t wanted = 0;
+  for (const auto& r : regions) {
+    if (r.size() < std::size_t(std::max(3, min_patch_vertices))) continue;
+    wanted += std::max<std::size_t>(1, r.size() / std::size_t(options.patch_vertices));
+  }
+  const double share = wanted > std::size_t(budget) ? double(budget) / double(wanted) : 1.0;
+  int next = segment_count;
+  std::vector<float> distance(n, kFar);
+  std::vector<std::int32_t> owner(n, -1);
+  for (std::size_t r : order) {
+    const auto& vertices = regions[r];
+    if (vertices.size() < std::size_t(std::max(3, min_patch_vertices))) break;
+    const int left = options.max_segments - next;
+    if (left <= 0) break;
+    int count = std::max(1, static_cast<int>(share * double(std::max<std::size_t>(
+                                                         1, vertices.size() /
+                                                                std::size_t(options.patch_vertices)))));
+    count = std::min(count, left);
+    // Farthest-point seeds along the edges, then every vertex to its nearest seed.
+    RelaxFrom(base, neighbours, region, std::int32_t(r), vertices.front(), -1, &distance, &owner);
+    std::uint32_t seed = vertices.front();
+    for (std::uint32_t v : vertices) {
+      if (distance[v] > distance[seed] || std::isinf(distance[seed])) seed = v;
+    }
+    for (std::uint32_t v : vertices) distance[v] = kFar;
+    for (int k = 0; k < count; ++k) {
+      RelaxFrom(base, neighbours, region, std::int32_t(r), seed, next + k, &distance, &owner);
+      for (std::uint32_t v : vertices) {
+        if (distance[v] > distance[seed]) seed = v;
+      }
+    }
+    // Compact: patches that ended up tiny stay unregistered (they are interpolated).
+    std::vector<std::size_t> sizes(count, 0);
+    for (std::uint32_t v : vertices) ++sizes[owner[v] - next];
+    std::vector<std::int32_t> renumber(count, -1);
+    int kept = 0;
+    for (int k = 0; k < count; ++k) {
+      if (sizes[k] >= 3) renumber[k] = next + kept++;
+    }
+    for (std::uint32_t v : vertices) (*labels)[v] = renumber[owner[v] - next];
+    next += kept;
+  }
+  return next;
+}
+
+Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& labels,
+                    int fixed_count, int total_count, FrameTargets targets,
+                    const SegmentationOptions& seg, const PatchTrackingOptions& options,
+                    std::vector<std::vector<RigidTransform>>* transforms,
+                    const ProgressCallback& progress) {
+  if (transforms->size() != targets.size()) {
+    return InvalidArgumentError("patch tracking: " + std::to_string(transforms->size()) +
+                                " frames of transforms for " + std::to_string(targets.size()) +
+                                " targets");
+  }
+  for (auto& frame : *transforms) frame.resize(total_count);
+  PatchLayout layout;
+  layout.fixed_count = fixed_count;
+  layout.patch_count = total_count - fixed_count;
+  if (layout.patch_count <= 0 || targets.empty()) return Status::Ok();
+  layout.members.resize(layout.patch_count);
+  for (std::uint32_t v = 0; v < labels.size(); ++v) {
+    if (labels[v] >= fixed_count && labels[v] < total_count) {
+      layout.members[labels[v] - fixed_count].push_back(v);
+    }
+  }
+  for (const auto& members : layout.members) {
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    for (std::uint32_t v : members) centre += base.positions[v];
+    centre /= float(std::max<std::size_t>(1, members.size()));
+    double spread = 0;
+    for (std::uint32_t v : members) spread += (base.positions[v] - centre).squaredNorm();
+    layout.centres.push_back(centre);
+    layout.radii.push_back(std::sqrt(spread / double(std::max<std::size_t>(1, members.size()))));
+  }
+  const auto neighbours = VertexNeighbours(base);
+  for (std::uint32_t u = 0; u < neighbours.size(); ++u) {
+    for (std::uint32_t w : neighbours[u]) {
+      const std::int32_t a = labels[u], b = labels[w];
+      if (w <= u || a < 0 || b < 0 || a == b) continue;
+      if (a < fixed_count && b < fixed_count) continue;
+      layout.seams.push_back({u, w, a, b});
+    }
+  }
+  layout.normals = ComputeVertexNormals(base);
+
+  const int frames = static_cast<int>(targets.size());
+  for (int k = 1; k < frames; ++k) {
+    if (!ReportProgress(progress, "patch tracking", k, frames)) {
+      return CancelledError("patch tracking cancelled");
+    }
+    std::vector<RigidTransform>& frame = (*transforms)[k];
+    for (int s = fixed_count; s < total_count; ++s) frame[s] = PredictPatch(*transforms, k, s);
+    if (targets[k] == nullptr) continue;
+    // Coarse to fine: halving from the search distance, then the method's schedule.
+    const float fine_start = seg.tolerance * std::max(1.0f, seg.initial_tolerance_factor);
+    float tol = fine_start;
+    while (tol * 2 < seg.shot.max_distance) tol *= 2;
+    for (;;) {
+      for (int it = 0; it < std::max(1, seg.icp_iterations); ++it) {
+        JointStep(base, layout, *targets[k], seg.shot, tol, options.stiffness, &frame);
+      }
+      if (tol <= seg.tolerance) break;
+      tol = tol > fine_start ? std::max(tol * 0.5f, fine_start)
+                             : std::max(tol * seg.tolerance_shrink, seg.tolerance);
+    }
+  }
+  return Status::Ok();
+}
+
+int MergePatchesIntoSegments(const TriangleMesh& base, int fixed_count, int total_count,
+                             const SegmentationOptions& seg, std::vector<std::int32_t>* labels,
+                             std::vector<std::vector<RigidTransform>>* transforms) {
+  const int patches = total_count - fixed_count;
+  if (patches <= 0 || fixed_count <= 0) return total_count;
+  std::vector<std::vector<std::uint32_t>> members(patches);
+  for (std::uint32_t v = 0; v < labels->size(); ++v) {
+    const std::int32_t l = (*labels)[v];
+    if (l >= fixed_count && l < total_count) members[l - fixed_count].push_back(v);
+  }
+  const auto neighbours = VertexNeighbours(base);
+  // Passes until nothing joins: a patch joining a segment makes the segment adjacent to
+  // the patches beyond it.
+  std::vector<std::int32_t> target(patches, -1);
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (int p = 0; p < patches; ++p) {
+      if (target[p] >= 0) continue;
+      std::vector<std::int32_t> adjacent;
+      for (std::uint32_t v : members[p]) {
+        for (std::uint32_t w : neighbours[v]) {
+          const std::int32_t l = (*labels)[w];
+          if (l >= 0 && l < fixed_count &&
+              std::find(adjacent.begin(), adjacent.end(), l) == adjacent.end()) {
+            adjacent.push_back(l);
+          }
+        }
+      }
+      double best = std::numeric_limits<double>::infinity();
+      for (std::int32_t s : adjacent) {
+        // Frames in which the two tracks disagree on the patch, and the summed RMS.
+        int disagree = 0;
+        double total = 0;
+        for (const auto& frame : *transforms) {
+          double squared = 0;
+          for (std::uint32_t v : members[p]) {
+            squared += (frame[fixed_count + p].Apply(base.positions[v]) -
+                        frame[s].Apply(base.positions[v]))
+                           .squaredNorm();
+          }
+          const double rms = std::sqrt(squared / double(members[p].size()));
+          if (rms > seg.tolerance) ++disagree;
+          total += rms;
+        }
+        if (disagree <= seg.occlusion_frames && total < best) best = total, target[p] = s;
+      }
+      if (target[p] >= 0) {
+        for (std::uint32_t v : members[p]) (*labels)[v] = target[p];
+        joined = true;
+      }
+    }
+  }
+  std::vector<std::int32_t> renumber(patches);
+  int next = fixed_count;
+  for (int p = 0; p < patches; ++p) renumber[p] = target[p] >= 0 ? target[p] : next++;
+  for (auto& l : *labels) {
+    if (l >= fixed_count && l < total_count) l = renumber[l - fixed_count];
+  }
+  for (auto& frame : *transforms) {
+    std::vector<RigidTransform> kept(frame.begin(), frame.begin() + fixed_count);
+    for (int p = 0; p < patches; ++p) {
+      if (target[p] < 0) kept.push_back(frame[fixed_count + p]);
+    }
+    frame = std::move(kept);
+  }
+  return next;
+}
+
+}  // namespace meshvid

@@ -311,6 +311,13 @@ TEST(FuseRangeMeshesTest, ThreeViewsOfASphereGiveAClosedOutwardSphere) {
   ASSERT_TRUE(again.ok()) << again.status().ToString();
   EXPECT_EQ(again->positions, fused->positions);
   EXPECT_EQ(again->triangles, fused->triangles);
+  // A meshing that outgrows its bound stops with a clear error instead of growing on.
+  options.max_mesher_vertices = fused->vertex_count() / 4;
+  auto bounded = FuseRangeMeshes(views, options);
+  ASSERT_FALSE(bounded.ok());
+  EXPECT_EQ(bounded.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(bounded.status().message().find("grew past"), std::string::npos)
+      << bounded.status().ToString();
 }
 
 TEST(FuseRangeMeshesTest, InvalidInputFails) {

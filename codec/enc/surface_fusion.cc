@@ -187,6 +187,31 @@ double SignedVolume6(const TriangleMesh& mesh) {
   return volume;
 }
 
+/// Thrown by BoundedCriteria when the mesher's triangulation outgrows its bound.
+struct MesherTooLarge {};
+
+/// CGAL's default meshing criteria, with a bound on the triangulation's size: checked on
+/// every facet the mesher considers, so a run-away refinement ends instead of exhausting
+/// memory.
+template <class Tr>
+class BoundedCriteria : public CGAL::Surface_mesh_default_criteria_3<Tr> {
+ public:
+  using Base = CGAL::Surface_mesh_default_criteria_3<Tr>;
+  BoundedCriteria(double angle, double radius, double distance, const Tr* triangulation,
+                  std::size_t max_vertices)
+      : Base(angle, radius, distance),
+        triangulation_(triangulation),
+        max_vertices_(max_vertices) {}
+  bool is_bad(const typename Base::Facet& f, typename Base::Quality& q) const {
+    if (triangulation_->number_of_vertices() > max_vertices_) throw MesherTooLarge{};
+    return Base::is_bad(f, q);
+  }
+
+ private:
+  const Tr* triangulation_;
+  std::size_t max_vertices_;
+};
+
 }  // namespace
 
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
@@ -271,9 +296,11 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     const double dichotomy_error = distance / 1000.0;
     Surface surface(function, Kernel::Sphere_3(inner, sphere_radius * sphere_radius),
                     dichotomy_error / sphere_radius);
-    CGAL::Surface_mesh_default_criteria_3<Triangulation> criteria(
-        20.0, options.max_triangle_radius * spacing, distance);
     Triangulation triangulation;
+    const std::size_t max_vertices =
+        options.max_mesher_vertices > 0 ? options.max_mesher_vertices : 10 * options.max_points;
+    const BoundedCriteria<Triangulation> criteria(20.0, options.max_triangle_radius * spacing,
+                                                  distance, &triangulation, max_vertices);
     Complex complex(triangulation);
     // The mesher seeds itself by shooting random rays from the inner point; a thin surface
     // can escape every one of them, so a few seeds (fixed: the output is deterministic) and
@@ -323,6 +350,13 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     result.normals = ComputeVertexNormals(result);
     ReportProgress(progress, "fusion: done", kStages, kStages);
     return result;
+  } catch (const MesherTooLarge&) {
+    return InvalidArgumentError(
+        "surface fusion: the Poisson surface's meshing grew past " +
+        std::to_string(options.max_mesher_vertices > 0 ? options.max_mesher_vertices
+                                                       : 10 * options.max_points) +
+        " vertices (a level set running far from the data: inconsistent normals or thin open "
+        "parts); stopped to bound memory");
   } catch (const std::exception& e) {
     return InternalError(std::string("surface fusion: CGAL failed: ") + e.what());
   }

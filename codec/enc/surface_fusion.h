@@ -26,6 +26,11 @@ struct SurfaceFusionOptions {
   /// the reconstructed implicit surface, in spacings (CGAL's sm_distance). Smaller values
   /// give more triangles where the surface curves.
   double max_surface_distance = 0.375;
+  /// Memory bound: the meshing stops with an error once its Delaunay triangulation holds
+  /// this many vertices (0: 10 x max_points). A Poisson function whose level set runs far
+  /// from the data (inconsistent normals, thin open parts) would otherwise grow until the
+  /// machine runs out of memory.
+  std::size_t max_mesher_vertices = 0;
 };
 
 /// Fuses range meshes into one closed surface (watertight where the data allows), oriented
@@ -34,7 +39,8 @@ struct SurfaceFusionOptions {
 /// points' normals (the views' own normals are used if present). Poisson surface
 /// reconstruction (CGAL), contoured closed; the largest connected component is kept, with
 /// area-weighted vertex normals. The result depends on the input only (same views, same
-/// mesh, vertex for vertex). Fails if the views hold too few points or lie in one plane.
+/// mesh, vertex for vertex). Fails if the views hold too few points or lie in one plane, or
+/// if the meshing outgrows options.max_mesher_vertices.
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
                                        const SurfaceFusionOptions& options = {},
                                        const ProgressCallback& progress = {});

@@ -2,76 +2,62 @@
 # Run from this folder: gnuplot samba-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "samba-3-arc-rd.png"
-set title "samba, 3 views (arc), 10 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "samba, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
 set ylabel "D1 PSNR (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.79398 40.0628
-2.71982 40.0611
-3.951 40.0616
-5.27506 40.0624
+1.69773 41.5086
+2.59577 41.5198
+3.75366 41.5210
+5.0008 41.5214
 EOD
 $s1 << EOD
-1.13666 35.8870
-1.34092 35.9046
-1.73246 35.9079
-2.415 35.9115
+0.58468 41.9204
+0.707527 41.9585
+0.920007 41.9285
+1.24206 41.9243
 EOD
 $s2 << EOD
-1.13666 35.8966
-1.34092 35.9148
-1.73246 35.9288
-2.415 35.9260
+0.58468 41.8862
+0.707527 41.9117
+0.920007 41.8917
+1.24206 41.8832
 EOD
 $s3 << EOD
-1.13666 35.9271
-1.34092 35.9377
-1.73246 35.9582
-2.415 35.9549
+0.58468 41.8775
+0.707527 41.8824
+0.920007 41.8589
+1.24206 41.8414
 EOD
 $s4 << EOD
-1.13666 35.9405
-1.34092 35.9680
-1.73246 35.9671
-2.415 35.9757
+7.64705 41.8448
 EOD
 $s5 << EOD
-14.7116 35.9695
+0.505253 41.9273
+0.751687 41.9213
+1.56183 41.9285
+2.8988 41.9379
 EOD
 $s6 << EOD
-1.10866 35.9113
-1.3818 35.8871
-2.84178 35.9086
-6.55046 35.9182
+0.505253 41.8493
+0.751687 41.8860
+1.56183 41.8878
+2.8988 41.8936
 EOD
 $s7 << EOD
-1.10866 35.9157
-1.3818 35.9023
-2.84178 35.9291
-6.55046 35.9313
-EOD
-$s8 << EOD
-1.10866 35.9164
-1.3818 35.9230
-2.84178 35.9551
-6.55046 35.9551
-EOD
-$s9 << EOD
-1.10866 35.9383
-1.3818 35.9454
-2.84178 35.9722
-6.55046 35.9799
+0.505253 41.8273
+0.751687 41.8705
+1.56183 41.8465
+2.8988 41.8406
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 2 pt 12 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L3", \
-     $s5 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L3 (lossless)", \
-     $s6 using 1:2 with linespoints lw 1 dt 2 pt 12 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s7 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s8 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L2", \
-     $s9 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L3"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -2,76 +2,62 @@
 # Run from this folder: gnuplot samba-6-ring.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "samba-6-ring-rd.png"
-set title "samba, 6 views (ring), 10 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "samba, 6 views (ring), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
 set ylabel "D1 PSNR (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.93936 55.1643
-1.44432 55.4308
-2.07432 55.4557
-2.7106 55.4532
+0.916827 56.9273
+1.41569 57.2724
+2.03039 57.2909
+2.65653 57.2928
 EOD
 $s1 << EOD
-0.92574 52.2139
-1.2352 52.2602
-1.6962 52.3026
-2.79696 52.2895
+0.437813 48.2947
+0.6157 48.3597
+0.949353 48.4128
+1.46759 48.4185
 EOD
 $s2 << EOD
-0.92574 52.3277
-1.2352 52.3865
-1.6962 52.4248
-2.79696 52.4752
+0.437813 47.8199
+0.6157 47.8560
+0.949353 47.8458
+1.46759 47.8428
 EOD
 $s3 << EOD
-0.92574 52.4556
-1.2352 52.5247
-1.6962 52.5457
-2.79696 52.5652
+0.437813 47.4864
+0.6157 47.4897
+0.949353 47.3915
+1.46759 47.3559
 EOD
 $s4 << EOD
-0.92574 52.5235
-1.2352 52.5610
-1.6962 52.5968
-2.79696 52.5974
+7.54788 47.3430
 EOD
 $s5 << EOD
-21.63 52.6130
+0.364133 48.1138
+0.73128 48.3607
+1.80283 48.4116
+3.26047 48.4245
 EOD
 $s6 << EOD
-0.85914 52.1558
-1.33798 52.2484
-3.81534 52.3235
-8.8449 52.3007
+0.364133 47.9524
+0.73128 47.8329
+1.80283 47.8280
+3.26047 47.8373
 EOD
 $s7 << EOD
-0.85914 52.2600
-1.33798 52.3701
-3.81534 52.4596
-8.8449 52.4769
-EOD
-$s8 << EOD
-0.85914 52.3720
-1.33798 52.5109
-3.81534 52.5616
-8.8449 52.5651
-EOD
-$s9 << EOD
-0.85914 52.4479
-1.33798 52.5705
-3.81534 52.5986
-8.8449 52.6074
+0.364133 47.8306
+0.73128 47.4834
+1.80283 47.3516
+3.26047 47.3424
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 2 pt 12 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L3", \
-     $s5 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L3 (lossless)", \
-     $s6 using 1:2 with linespoints lw 1 dt 2 pt 12 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s7 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s8 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L2", \
-     $s9 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L3"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

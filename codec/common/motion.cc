@@ -19,6 +19,10 @@ RigidTransform Inverse(const RigidTransform& t) {
   return result;
 }
 
+RigidTransform PredictConstantVelocity(const RigidTransform& before, const RigidTransform& last) {
+  return Compose(Compose(last, Inverse(before)), last);
+}
+
 Status ValidateMotionModel(const MotionModel& model, std::size_t vertex_count) {
   if (model.segment_count == 0) return CorruptError("motion: no segments");
   if (model.blends.size() != vertex_count) {

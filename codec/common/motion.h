@@ -31,6 +31,10 @@ RigidTransform Compose(const RigidTransform& a, const RigidTransform& b);
 /// The transform undoing t.
 RigidTransform Inverse(const RigidTransform& t);
 
+/// The next transform of a track moving at constant velocity: the step from `before` to
+/// `last`, applied once more after `last`.
+RigidTransform PredictConstantVelocity(const RigidTransform& before, const RigidTransform& last);
+
 /// One influence of a segment on a vertex.
 struct BlendInfluence {
   std::uint32_t segment = 0;

@@ -275,7 +275,8 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   MotionModel motion = BlendWeightsFromLabels(base, labels, segment_count, /*smoothing=*/4,
                                               /*soft_from=*/segmentation.segment_count);
   // The surface: base triangles some view saw (two corners or more) in some key frame. The
-  // rest is hidden, as the method leaves pixels that exist in no frame unfilled.
+  // summary states its share; with --hide-unseen the rest is hidden, as the method leaves
+  // pixels that exist in no frame unfilled.
   {
     std::vector<char> observed(base.vertex_count(), 0);
     std::vector<Eigen::Vector3f> posed, normals;

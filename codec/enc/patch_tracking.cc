@@ -11,6 +11,8 @@
 #include <Eigen/SparseCholesky>
 #include <tbb/parallel_for.h>
 
+#include "codec/enc/rigid_step.h"
+
 namespace meshvid {
 namespace {
 
@@ -44,15 +46,6 @@ void RelaxFrom(const TriangleMesh& base, const std::vector<std::vector<std::uint
   }
 }
 
-/// The skew matrix [q]x with [q]x w = q x w.
-Eigen::Matrix3d Skew(const Eigen::Vector3d& q) {
-  Eigen::Matrix3d m;
-  m << 0, -q.z(), q.y(), q.z(), 0, -q.x(), -q.y(), q.x(), 0;
-  return m;
-}
-
-/// Weight of the point-to-point term beside the point-to-plane one (as in the segmentation).
-constexpr double kPointWeight = 0.05;
 /// Weight of keeping each patch where it was predicted, per unit of its size: small, so it
 /// only decides what neither data nor neighbours do.
 constexpr double kPriorWeight = 0.01;
@@ -73,14 +66,6 @@ struct PatchLayout {
   std::vector<Eigen::Vector3f> normals;             ///< rest vertex normals
 };
 
-/// Constant-velocity prediction of frame k from k-1 and k-2.
-RigidTransform PredictPatch(const std::vector<std::vector<RigidTransform>>& transforms, int k,
-                            int s) {
-  if (k < 2) return transforms[k - 1][s];
-  const RigidTransform step = Compose(transforms[k - 1][s], Inverse(transforms[k - 2][s]));
-  return Compose(step, transforms[k - 1][s]);
-}
-
 /// One joint Gauss-Newton step of every patch's transform in `frame` (indices fixed_count..):
 /// point-to-plane data terms on hits within `tolerance`, seam agreement, a weak prior.
 void JointStep(const TriangleMesh& base, const PatchLayout& layout, const ShootingTarget& target,
@@ -93,8 +78,8 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
     centres[p] = (*frame)[fixed + p].Apply(layout.centres[p]).cast<double>();
   }
   // Per patch: its 6x6 block and right-hand side from its data.
-  std::vector<Eigen::Matrix<double, 6, 6>> diagonal(np, Eigen::Matrix<double, 6, 6>::Zero());
-  std::vector<Eigen::Matrix<double, 6, 1>> rhs(np, Eigen::Matrix<double, 6, 1>::Zero());
+  std::vector<Matrix6d> diagonal(np, Matrix6d::Zero());
+  std::vector<Vector6d> rhs(np, Vector6d::Zero());
   tbb::parallel_for(0, np, [&](int p) {
     const RigidTransform& t = (*frame)[fixed + p];
     for (std::uint32_t v : layout.members[p]) {
@@ -103,19 +88,11 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
       const ShotHit hit = target.ShootHit(origin, direction, shot);
       if (std::isnan(hit.distance) || std::abs(hit.distance) >= tolerance) continue;
       const Eigen::Vector3d x = origin.cast<double>();
-      const Eigen::Vector3d q = x - centres[p];
-      const Eigen::Vector3d n = hit.normal.cast<double>();
-      const Eigen::Vector3d r = x - (origin + hit.distance * direction).cast<double>();
-      Eigen::Matrix<double, 6, 1> j;
-      j << q.cross(n), n;
-      diagonal[p] += j * j.transpose();
-      rhs[p] += j * n.dot(r);
-      Eigen::Matrix<double, 3, 6> jp;
-      jp << -Skew(q), Eigen::Matrix3d::Identity();
-      diagonal[p] += kPointWeight * jp.transpose() * jp;
-      rhs[p] += kPointWeight * jp.transpose() * r;
+      AddCorrespondence(x - centres[p], hit.normal.cast<double>(),
+                        x - (origin + hit.distance * direction).cast<double>(), &diagonal[p],
+                        &rhs[p]);
     }
-    Eigen::Matrix<double, 6, 1> prior;
+    Vector6d prior;
     const double r2 = layout.radii[p] * layout.radii[p];
     prior << r2, r2, r2, 1, 1, 1;
     diagonal[p].diagonal() += kPriorWeight * double(layout.members[p].size()) * prior;
@@ -131,9 +108,12 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
       const Eigen::Vector3d xa = ta.Apply(base.positions[v]).cast<double>();
       const Eigen::Vector3d xb = tb.Apply(base.positions[v]).cast<double>();
       const Eigen::Vector3d r = xa - xb;
-      Eigen::Matrix<double, 3, 6> ja, jb;
-      if (pa >= 0) ja << -Skew(xa - centres[pa]), Eigen::Matrix3d::Identity();
-      if (pb >= 0) jb << Skew(xb - centres[pb]), -Eigen::Matrix3d::Identity();
+      // The residual xa - xb: + the point's derivative for a, - for b.
+      const Eigen::Matrix<double, 3, 6> ja =
+          pa >= 0 ? PointJacobian(xa - centres[pa]) : Eigen::Matrix<double, 3, 6>::Zero();
+      const Eigen::Matrix<double, 3, 6> jb =
+          pb >= 0 ? Eigen::Matrix<double, 3, 6>(-PointJacobian(xb - centres[pb]))
+                  : Eigen::Matrix<double, 3, 6>::Zero();
       if (pa >= 0) {
         diagonal[pa] += w * ja.transpose() * ja;
         rhs[pa] += w * ja.transpose() * r;
@@ -143,7 +123,7 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
         rhs[pb] += w * jb.transpose() * r;
       }
       if (pa >= 0 && pb >= 0) {
-        const Eigen::Matrix<double, 6, 6> off = w * ja.transpose() * jb;
+        const Matrix6d off = w * ja.transpose() * jb;
         for (int i = 0; i < 6; ++i) {
           for (int k = 0; k < 6; ++k) {
             triplets.emplace_back(6 * pa + i, 6 * pb + k, off(i, k));
@@ -155,8 +135,7 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
   }
   Eigen::VectorXd b(6 * np);
   for (int p = 0; p < np; ++p) {
-    // Levenberg-Marquardt damping keeps directions nothing constrains from running off.
-    diagonal[p].diagonal().array() += 1e-3 * diagonal[p].trace() / 6.0 + 1e-12;
+    DampRigidBlock(&diagonal[p]);
     for (int i = 0; i < 6; ++i) {
       for (int k = 0; k < 6; ++k) triplets.emplace_back(6 * p + i, 6 * p + k, diagonal[p](i, k));
     }
@@ -169,16 +148,8 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
   const Eigen::VectorXd x = solver.solve(b);
   if (!x.allFinite()) return;
   for (int p = 0; p < np; ++p) {
-    const Eigen::Vector3d omega = x.segment<3>(6 * p), d = x.segment<3>(6 * p + 3);
-    const double angle = omega.norm();
-    const Eigen::Quaterniond step = angle > 0
-                                        ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle))
-                                        : Eigen::Quaterniond::Identity();
     RigidTransform& t = (*frame)[fixed + p];
-    // x -> step (T x - centre) + centre + d
-    t.rotation = (step.cast<float>() * t.rotation).normalized();
-    t.translation =
-        (step * (t.translation.cast<double>() - centres[p]) + centres[p] + d).cast<float>();
+    t = ApplyIncrement(t, x.segment<6>(6 * p), centres[p]);
   }
 }
 
@@ -308,7 +279,10 @@ Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& l
       return CancelledError("patch tracking cancelled");
     }
     std::vector<RigidTransform>& frame = (*transforms)[k];
-    for (int s = fixed_count; s < total_count; ++s) frame[s] = PredictPatch(*transforms, k, s);
+    for (int s = fixed_count; s < total_count; ++s) {
+      frame[s] = k < 2 ? (*transforms)[k - 1][s]
+                       : PredictConstantVelocity((*transforms)[k - 2][s], (*transforms)[k - 1][s]);
+    }
     if (targets[k] == nullptr) continue;
     // Coarse to fine: halving from the search distance, then the method's schedule.
     const float fine_start = seg.tolerance * std::max(1.0f, seg.initial_tolerance_factor);

@@ -10,6 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "codec/enc/rigid_step.h"
+
 namespace meshvid {
 namespace {
 
@@ -20,8 +22,7 @@ constexpr float kNoResidual = std::numeric_limits<float>::infinity();
 RigidTransform Predict(const std::vector<RigidTransform>& transforms, int m) {
   if (m < 1) return RigidTransform{};
   if (m < 2) return transforms[m - 1];
-  const RigidTransform step = Compose(transforms[m - 1], Inverse(transforms[m - 2]));
-  return Compose(step, transforms[m - 1]);
+  return PredictConstantVelocity(transforms[m - 2], transforms[m - 1]);
 }
 
 /// The base vertices and normals the segmentation poses.
@@ -62,15 +63,8 @@ void Correspond(const BaseFrame& base, std::span<const std::uint32_t> members,
   }
 }
 
-/// Weight of the point-to-point term beside the point-to-plane one in a rigid step.
-constexpr double kPointWeight = 0.05;
-/// Damping of a rigid step, relative to the system's mean diagonal.
-constexpr double kDamping = 1e-3;
-
-/// One Gauss-Newton step of eq. 5 for the pairs (T v_k, c_k): the point-to-plane distance
-/// to the data's tangent plane at c_k (Chen & Medioni, whose normal shooting gives the
-/// correspondences), plus a small point-to-point term that fixes the directions a plane
-/// leaves free. Returns the updated transform; `transform` unchanged if underdetermined.
+/// One Gauss-Newton step of eq. 5 for the pairs (T v_k, c_k), about their centroid (see
+/// rigid_step.h). Returns the updated transform; `transform` unchanged if underdetermined.
 RigidTransform RigidStep(const RigidTransform& transform, std::span<const Eigen::Vector3f> from,
                          std::span<const Eigen::Vector3f> to,
                          std::span<const Eigen::Vector3f> normals) {
@@ -82,40 +76,16 @@ RigidTransform RigidStep(const RigidTransform& transform, std::span<const Eigen:
     centre += posed[k];
   }
   centre /= double(from.size());
-  Eigen::Matrix<double, 6, 6> a = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  Matrix6d a = Matrix6d::Zero();
+  Vector6d b = Vector6d::Zero();
   for (std::size_t k = 0; k < from.size(); ++k) {
-    const Eigen::Vector3d q = posed[k] - centre;
-    const Eigen::Vector3d n = normals[k].cast<double>();
-    const Eigen::Vector3d r = posed[k] - to[k].cast<double>();
-    Eigen::Matrix<double, 6, 1> j;
-    j << q.cross(n), n;
-    a += j * j.transpose();
-    b += j * n.dot(r);
-    // Point term: d(q + w x q + d - c) = -[q]x w + d.
-    Eigen::Matrix<double, 3, 6> jp;
-    Eigen::Matrix3d skew;
-    skew << 0, -q.z(), q.y(), q.z(), 0, -q.x(), -q.y(), q.x(), 0;
-    jp << -skew, Eigen::Matrix3d::Identity();
-    a += kPointWeight * jp.transpose() * jp;
-    b += kPointWeight * jp.transpose() * r;
+    AddCorrespondence(posed[k] - centre, normals[k].cast<double>(),
+                      posed[k] - to[k].cast<double>(), &a, &b);
   }
-  // Levenberg-Marquardt damping: few or nearly collinear points leave directions of the
-  // system almost free; damping keeps the step there small instead of arbitrary.
-  a.diagonal().array() += kDamping * a.trace() / 6.0 + 1e-12;
-  const Eigen::Matrix<double, 6, 1> x = a.ldlt().solve(-b);
+  DampRigidBlock(&a);
+  const Vector6d x = a.ldlt().solve(-b);
   if (!x.allFinite()) return transform;
-  const Eigen::Vector3d w = x.head<3>(), d = x.tail<3>();
-  const double angle = w.norm();
-  const Eigen::Quaterniond step =
-      angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle))
-                : Eigen::Quaterniond::Identity();
-  // x -> step (T x - centre) + centre + d
-  RigidTransform result;
-  result.rotation = (step.cast<float>() * transform.rotation).normalized();
-  result.translation = (step * (transform.translation.cast<double>() - centre) + centre + d)
-                           .cast<float>();
-  return result;
+  return ApplyIncrement(transform, x, centre);
 }
 
 /// How many members agree within options.tolerance (eq. 6) and how many have data at all.

@@ -256,6 +256,8 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   const auto point_map = CGAL::First_of_pair_property_map<PointWithNormal>();
   const auto normal_map = CGAL::Second_of_pair_property_map<PointWithNormal>();
 
+  const std::size_t max_vertices =
+      options.max_mesher_vertices > 0 ? options.max_mesher_vertices : 10 * options.max_points;
   try {
     // CGAL draws random numbers (mesher seeds, point shuffles) from a thread-local generator
     // it seeds with the time of day: reseed it so the same views give the same surface.
@@ -297,8 +299,6 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     Surface surface(function, Kernel::Sphere_3(inner, sphere_radius * sphere_radius),
                     dichotomy_error / sphere_radius);
     Triangulation triangulation;
-    const std::size_t max_vertices =
-        options.max_mesher_vertices > 0 ? options.max_mesher_vertices : 10 * options.max_points;
     const BoundedCriteria<Triangulation> criteria(20.0, options.max_triangle_radius * spacing,
                                                   distance, &triangulation, max_vertices);
     Complex complex(triangulation);
@@ -353,8 +353,7 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   } catch (const MesherTooLarge&) {
     return InvalidArgumentError(
         "surface fusion: the Poisson surface's meshing grew past " +
-        std::to_string(options.max_mesher_vertices > 0 ? options.max_mesher_vertices
-                                                       : 10 * options.max_points) +
+        std::to_string(max_vertices) +
         " vertices (a level set running far from the data: inconsistent normals or thin open "
         "parts); stopped to bound memory");
   } catch (const std::exception& e) {

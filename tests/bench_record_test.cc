@@ -106,7 +106,8 @@ TEST(BenchRecordTest, FilesAreWrittenAtomicallyAndOtherJsonIsSkipped) {
   records = ReadBenchRecords(dir.path());
   ASSERT_FALSE(records.ok());
   EXPECT_NE(records.status().message().find("broken.json"), std::string::npos);
-  EXPECT_FALSE(WriteBenchRecord(record, dir.File("missing/x.json")).ok());
+  ASSERT_TRUE(WriteBenchRecord(record, dir.File("missing/x.json")).ok());  // folder created
+  EXPECT_FALSE(WriteBenchRecord(record, dir.File("broken.json/x.json")).ok());  // a file in the way
 }
 
 TEST(BenchRecordTest, ParseRejectsWhatIsNotARecord) {

@@ -90,5 +90,28 @@ TEST(MvidCliTest, EvalMeasuresADecodedFileAgainstItsOwnFrames) {
   EXPECT_EQ(j["mean"]["coverage"], 1.0);
 }
 
+TEST(MvidCliTest, EveryOutputGoesIntoFoldersThatDoNotExistYet) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string nested = dir.File("a/b/c");
+  const testing::CliRun decode = testing::RunMeshvid(
+      "decode '" + kGolden + "' --quiet --frames 0:2 -o '" + nested + "/decoded/f{frame}.ply'" +
+          " --json '" + nested + "/json/decode.json'",
+      dir);
+  ASSERT_EQ(decode.exit_code, 0) << decode.err;
+  EXPECT_TRUE(std::filesystem::exists(nested + "/decoded/f1.ply"));
+  EXPECT_TRUE(std::filesystem::exists(nested + "/json/decode.json"));
+  const testing::CliRun eval = testing::RunMeshvid(
+      "eval --ref '" + nested + "/decoded/f{frame}.ply' --test '" + kGolden +
+          "' --frames 0:2 --samples 2000 --quiet --json '" + nested + "/eval/e.json'",
+      dir);
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  EXPECT_TRUE(std::filesystem::exists(nested + "/eval/e.json"));
+  // Nothing but the outputs: no temporary file is left beside them.
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.File("a"))) {
+    EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
+  }
+}
+
 }  // namespace
 }  // namespace meshvid

@@ -145,9 +145,11 @@ TEST(EvalSequenceTest, JsonHasSettingsPeakFramesAndMean) {
 
 TEST(EvalSequenceTest, WriteJsonNamesTheFileOnFailure) {
   EvalResult result;
-  const Status status = WriteEvalJson(result, "/nonexistent-dir/eval.json");
+  testing::TempDir dir;
+  testing::WriteFile(dir.File("file"), "a file where a folder should be");
+  const Status status = WriteEvalJson(result, dir.File("file/eval.json"));
   EXPECT_EQ(status.code(), StatusCode::kIoError);
-  EXPECT_NE(status.message().find("/nonexistent-dir/eval.json"), std::string::npos);
+  EXPECT_NE(status.message().find(dir.File("file/eval.json")), std::string::npos);
 }
 
 TEST(EvalSourceTest, CaptureSpecsAreRecognised) {

@@ -139,9 +139,13 @@ TEST(MeshIoTest, DispatchByExtension) {
   EXPECT_EQ(missing.status().code(), StatusCode::kNotFound);
   EXPECT_EQ(missing.status().message(), dir.File("none.obj") + ": no such file");
 
-  const Status no_dir = WriteMesh(dir.File("missing/dir/m.ply"), mesh);
+  // Missing folders are created; a parent that is a file is a clear error.
+  ASSERT_TRUE(WriteMesh(dir.File("missing/dir/m.ply"), mesh).ok());
+  EXPECT_TRUE(ReadMesh(dir.File("missing/dir/m.ply")).ok());
+  testing::WriteFile(dir.File("blocker"), "a file, not a folder");
+  const Status no_dir = WriteMesh(dir.File("blocker/m.ply"), mesh);
   EXPECT_EQ(no_dir.code(), StatusCode::kIoError);
-  EXPECT_CONTAINS(no_dir.message(), dir.File("missing/dir/m.ply") + ": cannot open for writing");
+  EXPECT_CONTAINS(no_dir.message(), dir.File("blocker/m.ply") + ": cannot create the folder");
 
   testing::WriteFile(dir.File("bad.ply"), "ply\nformat ascii 1.0\nend_header\n");
   const auto bad = ReadMesh(dir.File("bad.ply"));

@@ -89,7 +89,7 @@ TEST(Pc2Test, EmptyCacheAndWriterMisuse) {
   EXPECT_EQ((*reader)->header().num_samples, 0);
   EXPECT_EQ(Pc2Writer::Create(dir.File("x.pc2"), 0).status().code(),
             StatusCode::kInvalidArgument);
-  EXPECT_EQ(Pc2Writer::Create(dir.File("no/dir/x.pc2"), 4).status().code(), StatusCode::kIoError);
+  EXPECT_EQ(Pc2Writer::Create(dir.File("empty.pc2/y.pc2"), 4).status().code(), StatusCode::kIoError);
 }
 
 TEST(Pc2Test, CorruptHeaders) {

@@ -10,6 +10,7 @@
 
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/base_mesh_encoder.h"
+#include "format/output_file.h"
 #include "tools/io/mesh_io.h"
 
 namespace meshvid {
@@ -96,7 +97,7 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
         MESHVID_RETURN_IF_ERROR(
             WriteMesh(FramePath(folders[s], frame, "ply"), *decoded, write_options));
         const std::string bitstream(encoded->bytes.begin(), encoded->bytes.end());
-        MESHVID_RETURN_IF_ERROR(WriteTextFile(FramePath(folders[s], frame, "drc"), bitstream));
+        MESHVID_RETURN_IF_ERROR(WriteFileAtomically(FramePath(folders[s], frame, "drc"), bitstream));
       }
     }
     if (!ReportProgress(progress, "baseline", frame + 1, summary.frames)) {
@@ -181,15 +182,6 @@ StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder) {
   }
   summary.vertices /= summary.frames;
   return summary;
-}
-
-Status WriteTextFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return IoError(path + ": cannot open for writing");
-  out << text;
-  out.close();
-  if (!out) return IoError(path + ": write failed");
-  return Status::Ok();
 }
 
 StatusOr<std::string> ReadTextFile(const std::string& path) {

@@ -73,9 +73,6 @@ struct DracoDecodeSummary {
 /// the decoding alone. Fails naming the file that does not decode, or if there is none.
 StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder);
 
-/// Writes `text` to `path` (creating or truncating it); fails naming the file.
-Status WriteTextFile(const std::string& path, const std::string& text);
-
 /// Reads a whole file; fails naming the file.
 StatusOr<std::string> ReadTextFile(const std::string& path);
 

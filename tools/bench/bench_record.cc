@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "format/output_file.h"
 #include "tools/bench/bd_rate.h"
 
 namespace meshvid {
@@ -287,18 +288,7 @@ StatusOr<BenchRecord> ReadBenchRecord(const std::string& path) {
 }
 
 Status WriteBenchRecord(const BenchRecord& record, const std::string& path) {
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) return IoError(temporary + ": cannot open for writing");
-    out << BenchRecordToJson(record);
-    out.close();
-    if (!out) return IoError(temporary + ": write failed");
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) return IoError(path + ": cannot replace: " + error.message());
-  return Status::Ok();
+  return WriteFileAtomically(path, BenchRecordToJson(record));
 }
 
 StatusOr<std::vector<BenchRecord>> ReadBenchRecords(const std::string& folder) {

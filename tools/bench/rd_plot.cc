@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "format/output_file.h"
 #include "tools/bench/baseline.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/child_process.h"
@@ -138,7 +139,7 @@ StatusOr<std::map<std::string, std::string>> RenderRdPlots(const std::vector<Ben
     const std::string script = RdPlotScript(record, png);
     if (script.empty()) continue;
     const std::string script_path = folder + "/" + name + ".gp";
-    MESHVID_RETURN_IF_ERROR(WriteTextFile(script_path, script));
+    MESHVID_RETURN_IF_ERROR(WriteFileAtomically(script_path, script));
     StatusOr<ChildRun> run = RunChild({gnuplot, "-e", "cd " + Quote(folder), script_path},
                                       log_dir + "/gnuplot-" + name + ".log");
     if (!run.ok()) return run.status();

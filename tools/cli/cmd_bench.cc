@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "format/output_file.h"
 #include "tools/bench/baseline.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_runner.h"
@@ -140,7 +141,7 @@ int WriteReport(const BenchArguments& args, const BenchOptions& options) {
       report_options.plot_note = plots.status().message();
     }
   }
-  const Status written = WriteTextFile(report, GenerateResultsMarkdown(*records, report_options));
+  const Status written = WriteFileAtomically(report, GenerateResultsMarkdown(*records, report_options));
   if (!written.ok()) return ReportError(written);
   if (!args.quiet)
     std::fprintf(stderr, "Wrote %s (%zu records)\n", report.c_str(), records->size());
@@ -215,7 +216,7 @@ int RunBaselineCommand(const BaselineArguments& args) {
   bar.Finish();
   if (!summary.ok()) return ReportError(summary.status());
   if (!args.summary_json.empty()) {
-    const Status written = WriteTextFile(args.summary_json, BaselineSummaryToJson(*summary));
+    const Status written = WriteFileAtomically(args.summary_json, BaselineSummaryToJson(*summary));
     if (!written.ok()) return ReportError(written);
   }
   if (!args.quiet) {
@@ -244,7 +245,7 @@ int RunDracoDecodeCommand(const std::string& folder, const std::string& json, bo
                               {"seconds", summary->seconds},
                               {"frames_per_second", fps},
                               {"vertices", summary->vertices}};
-    const Status written = WriteTextFile(json, j.dump(2) + "\n");
+    const Status written = WriteFileAtomically(json, j.dump(2) + "\n");
     if (!written.ok()) return ReportError(written);
   }
   if (!quiet) {

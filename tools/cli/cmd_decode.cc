@@ -8,6 +8,7 @@
 #include <string>
 
 #include "codec/dec/mvid_decoder.h"
+#include "format/output_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
@@ -39,11 +40,7 @@ Status WriteDecodeJson(const DecodeArguments& args, int level, int frames, doubl
                             {"frames_per_second", seconds > 0 ? frames / seconds : 0.0},
                             {"vertices", info.vertices_per_level[level]},
                             {"triangles", info.triangles_per_level[level]}};
-  std::ofstream out(args.json, std::ios::binary | std::ios::trunc);
-  out << j.dump(2) << "\n";
-  out.close();
-  if (!out) return IoError(args.json + ": cannot write");
-  return Status::Ok();
+  return WriteFileAtomically(args.json, j.dump(2) + "\n");
 }
 
 int RunDecode(const DecodeArguments& args) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "codec/enc/encoder.h"
+#include "format/output_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/capture.h"
@@ -140,31 +141,26 @@ int RunEncode(EncodeArguments args) {
   metadata["capture"] = std::filesystem::path(args.capture).filename().string();
   args.options.metadata_json = metadata.dump();
 
-  // Written to a temporary file first: a failed encode never leaves a truncated .mvid behind.
-  const std::string partial = args.output + ".partial";
-  std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-  if (!out) return ReportError(IoError("cannot create " + partial));
+  // Written to a temporary file first: a failed encode never leaves a truncated .mvid behind,
+  // and a bad output path fails before any work.
+  StatusOr<std::unique_ptr<OutputFile>> out = OutputFile::Open(args.output);
+  if (!out.ok()) return ReportError(out.status().WithContext("-o"));
   CaptureFrameSource source(std::move(*capture));
   ProgressBar bar(args.quiet);
   const auto start = std::chrono::steady_clock::now();
-  StatusOr<EncodeSummary> summary =
-      EncodeCapture(source, OstreamSink(out, args.output), args.options, bar.Callback());
+  StatusOr<EncodeSummary> summary = EncodeCapture(
+      source, OstreamSink((*out)->stream(), args.output), args.options, bar.Callback());
   bar.Finish();
-  out.close();
-  if (!summary.ok() || !out) {
-    std::filesystem::remove(partial);
-    return ReportError(summary.ok() ? IoError("cannot write " + args.output) : summary.status());
-  }
-  std::error_code error;
-  std::filesystem::rename(partial, args.output, error);
-  if (error) return ReportError(IoError("cannot rename " + partial + ": " + error.message()));
+  if (!summary.ok()) return ReportError(summary.status());
+  const Status committed = (*out)->Commit();
+  if (!committed.ok()) return ReportError(committed);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) PrintSummary(*summary, args, seconds);
   if (!args.summary_json.empty()) {
-    std::ofstream json(args.summary_json);
-    json << SummaryJson(*summary, args, seconds).dump(2) << "\n";
-    if (!json) return ReportError(IoError("cannot write " + args.summary_json));
+    const Status written = WriteFileAtomically(
+        args.summary_json, SummaryJson(*summary, args, seconds).dump(2) + "\n");
+    if (!written.ok()) return ReportError(written.WithContext("--summary-json"));
   }
   return 0;
 }

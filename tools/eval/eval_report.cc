@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "format/output_file.h"
 #include "tools/eval/evaluation.h"
 
 namespace meshvid {
@@ -73,12 +74,7 @@ std::string EvalResultToJson(const EvalResult& result) {
 }
 
 Status WriteEvalJson(const EvalResult& result, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return IoError(path + ": cannot open for writing");
-  out << EvalResultToJson(result);
-  out.close();
-  if (!out) return IoError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, EvalResultToJson(result));
 }
 
 std::string FormatEvalTable(const EvalResult& result) {

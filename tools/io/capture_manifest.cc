@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "format/output_file.h"
 #include "tools/io/capture.h"
 #include "tools/io/capture_builder.h"
 #include "tools/io/file_pattern.h"
@@ -318,12 +319,7 @@ Status WriteCaptureManifest(const std::string& manifest_path, const CaptureInfo&
     frames.push_back(paths[f]);
   }
   root["frames"] = frames;
-  std::ofstream out(manifest_path, std::ios::binary);
-  if (!out) return IoError(manifest_path + ": cannot create the manifest");
-  out << root.dump(2) << "\n";
-  out.close();
-  if (!out) return IoError(manifest_path + ": cannot write the manifest");
-  return Status::Ok();
+  return WriteFileAtomically(manifest_path, root.dump(2) + "\n");
 }
 
 }  // namespace meshvid

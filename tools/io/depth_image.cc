@@ -6,6 +6,9 @@
 #include <csetjmp>
 #include <cstdio>
 #include <memory>
+#include <string>
+
+#include "format/output_file.h"
 
 namespace meshvid {
 namespace {
@@ -27,6 +30,14 @@ void PngError(png_structp png, png_const_charp message) {
 
 void PngWarning(png_structp, png_const_charp) {}
 
+/// libpng write callback: appends to the std::string behind the io pointer.
+void AppendToString(png_structp png, png_bytep data, png_size_t size) {
+  auto* bytes = static_cast<std::string*>(png_get_io_ptr(png));
+  bytes->append(reinterpret_cast<const char*>(data), size);
+}
+
+void FlushNothing(png_structp) {}
+
 }  // namespace
 
 Status WriteDepthPng(const std::string& path, const DepthImage& image) {
@@ -36,8 +47,7 @@ Status WriteDepthPng(const std::string& path, const DepthImage& image) {
                                 std::to_string(image.height) + " but holds " +
                                 std::to_string(image.values.size()) + " values");
   }
-  UniqueFile file(std::fopen(path.c_str(), "wb"));
-  if (!file) return IoError(path + ": cannot create file");
+  std::string encoded;
   std::string error;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, PngError, PngWarning);
   if (png == nullptr) return InternalError(path + ": libpng could not start");
@@ -48,7 +58,7 @@ Status WriteDepthPng(const std::string& path, const DepthImage& image) {
     png_destroy_write_struct(&png, &info);
     return IoError(path + ": cannot write PNG: " + error);
   }
-  png_init_io(png, file.get());
+  png_set_write_fn(png, &encoded, AppendToString, FlushNothing);
   png_set_IHDR(png, info, image.width, image.height, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
@@ -62,8 +72,7 @@ Status WriteDepthPng(const std::string& path, const DepthImage& image) {
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  if (std::fflush(file.get()) != 0) return IoError(path + ": cannot write file");
-  return Status::Ok();
+  return WriteFileAtomically(path, encoded);
 }
 
 StatusOr<DepthImage> ReadDepthPng(const std::string& path) {

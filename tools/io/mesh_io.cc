@@ -7,6 +7,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "format/output_file.h"
 #include "tools/io/mesh_io_internal.h"
 
 namespace meshvid {
@@ -78,14 +79,11 @@ Status WriteMesh(const std::string& path, const TriangleMesh& mesh,
                  const MeshWriteOptions& options) {
   const MeshFileType type = TypeOf(path);
   if (type == MeshFileType::kUnknown) return UnknownExtension(path);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return IoError(path + ": cannot open for writing (missing directory or no permission?)");
-  Status status = type == MeshFileType::kPly ? WritePly(out, mesh, options)
-                                             : WriteObj(out, mesh, options);
+  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<OutputFile> out, OutputFile::Open(path));
+  Status status = type == MeshFileType::kPly ? WritePly(out->stream(), mesh, options)
+                                             : WriteObj(out->stream(), mesh, options);
   if (!status.ok()) return status.WithContext(path);
-  out.close();
-  if (!out) return IoError(path + ": write failed (disk full?)");
-  return Status::Ok();
+  return out->Commit();
 }
 
 }  // namespace meshvid

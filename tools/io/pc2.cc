@@ -127,10 +127,7 @@ StatusOr<std::unique_ptr<Pc2Writer>> Pc2Writer::Create(const std::string& path,
   writer->header_.start_frame = start_frame;
   writer->header_.sample_rate = sample_rate;
   writer->header_.num_samples = 0;
-  writer->out_.open(path, std::ios::binary | std::ios::trunc);
-  if (!writer->out_) {
-    return IoError(path + ": cannot open for writing (missing directory or no permission?)");
-  }
+  MESHVID_ASSIGN_OR_RETURN(writer->out_, OutputFile::Open(path));
   char bytes[kHeaderBytes];
   std::memcpy(bytes, kMagic, sizeof(kMagic));
   StoreLittleEndian(writer->header_.version, bytes + 12);
@@ -138,12 +135,12 @@ StatusOr<std::unique_ptr<Pc2Writer>> Pc2Writer::Create(const std::string& path,
   StoreLittleEndian(start_frame, bytes + 20);
   StoreLittleEndian(sample_rate, bytes + 24);
   StoreLittleEndian(std::int32_t{0}, bytes + kNumSamplesOffset);
-  if (!writer->out_.write(bytes, kHeaderBytes)) return IoError(path + ": header write failed");
+  if (!writer->out_->stream().write(bytes, kHeaderBytes)) return IoError(path + ": header write failed");
   return writer;
 }
 
 Status Pc2Writer::AppendFrame(const std::vector<Eigen::Vector3f>& positions) {
-  if (!out_.is_open()) return InvalidArgumentError(path_ + ": AppendFrame after Finish");
+  if (!out_) return InvalidArgumentError(path_ + ": AppendFrame after Finish");
   if (positions.size() != static_cast<std::size_t>(header_.num_points)) {
     return InvalidArgumentError(path_ + ": frame has " + std::to_string(positions.size()) +
                                 " points, the PC2 file has " +
@@ -157,7 +154,7 @@ Status Pc2Writer::AppendFrame(const std::vector<Eigen::Vector3f>& positions) {
   for (const Eigen::Vector3f& v : positions) {
     for (int c = 0; c < 3; ++c, p += 4) StoreLittleEndian(v[c], p);
   }
-  if (!out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
+  if (!out_->stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
     return IoError(path_ + ": write failed (disk full?)");
   }
   ++header_.num_samples;
@@ -165,14 +162,14 @@ Status Pc2Writer::AppendFrame(const std::vector<Eigen::Vector3f>& positions) {
 }
 
 Status Pc2Writer::Finish() {
-  if (!out_.is_open()) return InvalidArgumentError(path_ + ": Finish called twice");
+  if (!out_) return InvalidArgumentError(path_ + ": Finish called twice");
   char bytes[4];
   StoreLittleEndian(header_.num_samples, bytes);
-  out_.seekp(static_cast<std::streamoff>(kNumSamplesOffset));
-  out_.write(bytes, 4);
-  out_.close();
-  if (!out_) return IoError(path_ + ": finishing the PC2 file failed (disk full?)");
-  return Status::Ok();
+  out_->stream().seekp(static_cast<std::streamoff>(kNumSamplesOffset));
+  out_->stream().write(bytes, 4);
+  const Status committed = out_->Commit();
+  out_.reset();
+  return committed;
 }
 
 }  // namespace meshvid

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "format/output_file.h"
 #include "format/status.h"
 
 namespace meshvid {
@@ -57,7 +58,7 @@ class Pc2Writer {
  private:
   Pc2Writer() = default;
   std::string path_;
-  std::ofstream out_;
+  std::unique_ptr<OutputFile> out_;  ///< null once finished
   Pc2Header header_;
 };
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
+#include "format/output_file.h"
 #include "tools/io/capture.h"
 #include "tools/io/mesh_io.h"
 #include "tools/io/pc2.h"
@@ -62,11 +63,7 @@ Status WriteSimulateJson(const std::string& path, const MeshSequence& ground_tru
                  {"dropout", sensor.dropout},
                  {"seed", sensor.seed},
                  {"max_depth_jump_ratio", sensor.meshing.max_depth_jump_ratio}};
-  std::ofstream out(path);
-  out << j.dump(2) << "\n";
-  out.close();
-  if (!out) return IoError("cannot write " + path + " (is the output folder writable?)");
-  return Status::Ok();
+  return WriteFileAtomically(path, j.dump(2) + "\n");
 }
 
 /// Writes the ground truth of the simulated frames, one frame at a time.

@@ -33,7 +33,7 @@ std::vector<uint8_t> EncodePreamble() {
   return writer.Release();
 }
 
-Status CheckPreamble(std::span<const uint8_t> bytes, std::string_view source) {
+StatusOr<uint32_t> CheckPreamble(std::span<const uint8_t> bytes, std::string_view source) {
   const std::string name(source);
   if (bytes.size() < kPreambleSize) {
     return CorruptError(name + ": too short for a .mvid file (" + std::to_string(bytes.size()) +
@@ -43,12 +43,13 @@ Status CheckPreamble(std::span<const uint8_t> bytes, std::string_view source) {
     return CorruptError(name + ": not a .mvid file (the first 4 bytes are not \"MVID\")");
   }
   const uint32_t version = LoadLittleEndianU32(bytes.data() + 4);
-  if (version != kMvidFormatVersion) {
+  if (version < kMvidOldestReadableVersion || version > kMvidFormatVersion) {
     return UnsupportedError(name + ": .mvid format_version " + std::to_string(version) +
-                            " is not supported (this build reads version " +
+                            " is not supported (this build reads versions " +
+                            std::to_string(kMvidOldestReadableVersion) + " to " +
                             std::to_string(kMvidFormatVersion) + ")");
   }
-  return Status::Ok();
+  return version;
 }
 
 std::vector<uint8_t> EncodeChunk(uint32_t type, uint32_t flags, std::span<const uint8_t> payload) {

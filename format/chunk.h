@@ -17,8 +17,10 @@ namespace meshvid {
 
 /// The four bytes every .mvid file starts with.
 inline constexpr std::string_view kMvidMagic = "MVID";
-/// The container version this code writes and the only one it reads.
-inline constexpr uint32_t kMvidFormatVersion = 1;
+/// The container version this code writes (2: key groups, each with its own BASE and MOTN).
+inline constexpr uint32_t kMvidFormatVersion = 2;
+/// The oldest container version this code reads (1: one BASE and MOTN for the whole file).
+inline constexpr uint32_t kMvidOldestReadableVersion = 1;
 /// magic(4) + format_version(u32).
 inline constexpr size_t kPreambleSize = 8;
 /// type(4) + flags(u32) + payload_size(u64).
@@ -66,9 +68,10 @@ struct ChunkHeader {
 
 /// The 8-byte preamble "MVID" + format_version.
 std::vector<uint8_t> EncodePreamble();
-/// Checks magic and version of the first kPreambleSize bytes (kCorrupt if short or the magic
-/// is wrong, kUnsupported for another version). `source` names the file in messages.
-Status CheckPreamble(std::span<const uint8_t> bytes, std::string_view source);
+/// Checks magic and version of the first kPreambleSize bytes and returns the format_version
+/// (kCorrupt if short or the magic is wrong, kUnsupported for a version this build does not
+/// read). `source` names the file in messages.
+StatusOr<uint32_t> CheckPreamble(std::span<const uint8_t> bytes, std::string_view source);
 
 /// A whole chunk: header, payload and crc32c over header + payload.
 std::vector<uint8_t> EncodeChunk(uint32_t type, uint32_t flags, std::span<const uint8_t> payload);

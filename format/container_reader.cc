@@ -26,6 +26,7 @@ StatusOr<ContainerReader> ContainerReader::Open(std::unique_ptr<ByteSource> sour
     reader.index_ = ContainerIndex();
     reader.ScanChunks();
   }
+  if (reader.index_.key_groups.empty()) reader.index_.key_groups.push_back({});
   return reader;
 }
 
@@ -69,7 +70,8 @@ Status ContainerReader::ReadHead() {
   std::array<uint8_t, kPreambleSize> preamble{};
   const size_t available = source_->size() < kPreambleSize ? source_->size() : kPreambleSize;
   MESHVID_RETURN_IF_ERROR(source_->ReadAt(0, std::span<uint8_t>(preamble).first(available)));
-  MESHVID_RETURN_IF_ERROR(
+  MESHVID_ASSIGN_OR_RETURN(
+      format_version_,
       CheckPreamble(std::span<const uint8_t>(preamble).first(available), source_->name()));
   if (source_->size() < kPreambleSize + kChunkHeaderSize + kChunkCrcSize) {
     return CorruptError(source_->name() + ": truncated before the end of the HEAD chunk");
@@ -102,20 +104,22 @@ Status ContainerReader::LoadIndex() {
   if (index_offset + kChunkHeaderSize + payload.size() + kChunkCrcSize != trailer_offset) {
     return CorruptError(context + ": INDX is not immediately followed by TRLR");
   }
-  MESHVID_ASSIGN_OR_RETURN(index_, DecodeIndexPayload(payload, context));
+  MESHVID_ASSIGN_OR_RETURN(index_, DecodeIndexPayload(payload, format_version_, context));
   // Every referenced chunk must lie between HEAD and INDX with room for its header.
   const uint64_t limit = index_offset;
   auto in_area = [&](uint64_t offset, uint64_t min_payload) {
     return offset >= head_end_ && offset < limit &&
            limit - offset >= kChunkHeaderSize + min_payload + kChunkCrcSize;
   };
-  if (index_.base_offset != 0 && !in_area(index_.base_offset, 0)) {
-    return CorruptError(context + ": base_offset " + std::to_string(index_.base_offset) +
-                        " is outside the chunk area");
-  }
-  if (index_.motion_offset != 0 && !in_area(index_.motion_offset, 0)) {
-    return CorruptError(context + ": motion_offset " + std::to_string(index_.motion_offset) +
-                        " is outside the chunk area");
+  for (size_t k = 0; k < index_.key_groups.size(); ++k) {
+    const KeyGroupEntry& key_group = index_.key_groups[k];
+    for (const auto& [name, offset] : {std::pair{"base_offset", key_group.base_offset},
+                                       std::pair{"motion_offset", key_group.motion_offset}}) {
+      if (offset != 0 && !in_area(offset, 0)) {
+        return CorruptError(context + ": key group " + std::to_string(k) + " " + name + " " +
+                            std::to_string(offset) + " is outside the chunk area");
+      }
+    }
   }
   for (size_t k = 0; k < index_.gofs.size(); ++k) {
     if (!in_area(index_.gofs[k].offset, kGofPrefixSize)) {
@@ -139,8 +143,15 @@ void ContainerReader::ScanChunks() {
   const uint64_t size = source_->size();
   uint64_t offset = head_end_;
   uint64_t next_frame = 0;
-  bool saw_gof = false;
-  auto stop = [&](Status status) { scan_status_ = std::move(status); };
+  KeyGroupTracker key_groups(format_version_);
+  auto stop = [&](Status status) {
+    scan_status_ = std::move(status);
+    index_.key_groups = key_groups.key_groups();
+    // A key group cut before its first GOF has nothing readable.
+    if (index_.key_groups.size() > 1 && index_.key_groups.back().first_gof >= gof_count()) {
+      index_.key_groups.pop_back();
+    }
+  };
   while (true) {
     if (offset == size) {
       return stop(CorruptError(name + ": the file ends after " + std::to_string(gof_count()) +
@@ -158,9 +169,10 @@ void ContainerReader::ScanChunks() {
     const ChunkHeader header = *parsed;
     const std::string context = ChunkContext(name, header.type, offset);
     if (header.type == kChunkBase || header.type == kChunkMotion) {
-      uint64_t& slot = header.type == kChunkBase ? index_.base_offset : index_.motion_offset;
-      if (slot != 0 || saw_gof) return stop(CorruptError(context + ": duplicate or after a GOF"));
-      slot = offset;
+      if (Status s = key_groups.AddBaseOrMotion(header.type == kChunkBase, offset, context);
+          !s.ok()) {
+        return stop(s);
+      }
     } else if (header.type == kChunkGof) {
       std::array<uint8_t, kGofPrefixSize> prefix;
       if (header.payload_size < kGofPrefixSize) return stop(CorruptError(context + ": too small"));
@@ -174,8 +186,8 @@ void ContainerReader::ScanChunks() {
                                  std::to_string(frame_count) + " break the GOF sequence"));
       }
       index_.gofs.push_back({offset, first_frame, frame_count});
+      key_groups.AddGof();
       next_frame += frame_count;
-      saw_gof = true;
     } else if (header.type == kChunkTrailer) {
       return stop(Status::Ok());
     } else if (header.type != kChunkIndex && (header.flags & kChunkFlagSkippable) == 0) {
@@ -209,14 +221,27 @@ StatusOr<size_t> ContainerReader::FindGof(uint64_t frame) const {
   return low;
 }
 
-StatusOr<std::vector<uint8_t>> ContainerReader::ReadBase() {
-  if (!has_base()) return NotFoundError(source_->name() + ": the file has no BASE chunk");
-  return ReadChunkPayload(index_.base_offset, kChunkBase);
+std::pair<size_t, size_t> ContainerReader::GofsOfKeyGroup(size_t k) const {
+  const size_t first = index_.key_groups[k].first_gof;
+  const size_t end =
+      k + 1 < index_.key_groups.size() ? index_.key_groups[k + 1].first_gof : index_.gofs.size();
+  return {first, end};
 }
 
-StatusOr<std::vector<uint8_t>> ContainerReader::ReadMotion() {
-  if (!has_motion()) return NotFoundError(source_->name() + ": the file has no MOTN chunk");
-  return ReadChunkPayload(index_.motion_offset, kChunkMotion);
+StatusOr<std::vector<uint8_t>> ContainerReader::ReadBase(size_t k) {
+  if (k >= index_.key_groups.size() || index_.key_groups[k].base_offset == 0) {
+    return NotFoundError(source_->name() + ": key group " + std::to_string(k) +
+                         " has no readable BASE chunk");
+  }
+  return ReadChunkPayload(index_.key_groups[k].base_offset, kChunkBase);
+}
+
+StatusOr<std::vector<uint8_t>> ContainerReader::ReadMotion(size_t k) {
+  if (k >= index_.key_groups.size() || index_.key_groups[k].motion_offset == 0) {
+    return NotFoundError(source_->name() + ": key group " + std::to_string(k) +
+                         " has no readable MOTN chunk");
+  }
+  return ReadChunkPayload(index_.key_groups[k].motion_offset, kChunkMotion);
 }
 
 StatusOr<GroupOfFrames> ContainerReader::ReadGof(size_t k) {

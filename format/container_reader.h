@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "format/byte_source.h"
@@ -29,6 +30,8 @@ class ContainerReader {
 
   /// The HEAD chunk.
   const ContainerHeader& header() const { return header_; }
+  /// The preamble's format_version (1 or 2).
+  uint32_t format_version() const { return format_version_; }
   /// True when GOF locations came from INDX; false when they came from a forward scan.
   bool used_index() const { return used_index_; }
   /// Ok when INDX was used; otherwise why it could not be (missing trailer, bad CRC, ...).
@@ -44,12 +47,19 @@ class ContainerReader {
   /// The GOF holding `frame` (kNotFound if no readable GOF holds it).
   StatusOr<size_t> FindGof(uint64_t frame) const;
 
-  bool has_base() const { return index_.base_offset != 0; }
-  bool has_motion() const { return index_.motion_offset != 0; }
-  /// The BASE payload (CRC-checked); kNotFound when the file has none.
-  StatusOr<std::vector<uint8_t>> ReadBase();
-  /// The MOTN payload (CRC-checked); kNotFound when the file has none.
-  StatusOr<std::vector<uint8_t>> ReadMotion();
+  /// The key groups whose chunks can be read (at least one; a version-1 file has one).
+  const std::vector<KeyGroupEntry>& key_groups() const { return index_.key_groups; }
+  /// The key group GOF `gof` belongs to.
+  size_t KeyGroupOfGof(size_t gof) const { return index_.KeyGroupOfGof(gof); }
+  /// GOFs [first, end) of key group `k` (k < key_groups().size()).
+  std::pair<size_t, size_t> GofsOfKeyGroup(size_t k) const;
+
+  bool has_base() const { return index_.key_groups[0].base_offset != 0; }
+  bool has_motion() const { return index_.key_groups[0].motion_offset != 0; }
+  /// The BASE payload of key group `k` (CRC-checked); kNotFound when it has none.
+  StatusOr<std::vector<uint8_t>> ReadBase(size_t k = 0);
+  /// The MOTN payload of key group `k` (CRC-checked); kNotFound when it has none.
+  StatusOr<std::vector<uint8_t>> ReadMotion(size_t k = 0);
   /// GOF `k` (0-based), reading only its chunk; CRC-checked and matched against its index entry.
   StatusOr<GroupOfFrames> ReadGof(size_t k);
 
@@ -67,6 +77,7 @@ class ContainerReader {
   std::unique_ptr<ByteSource> source_;
   ContainerHeader header_;
   ContainerIndex index_;
+  uint32_t format_version_ = 0;
   uint64_t head_end_ = 0;
   bool used_index_ = false;
   Status index_status_;

@@ -40,18 +40,23 @@ Status ContainerWriter::Begin(const ContainerHeader& header) {
   return Status::Ok();
 }
 
+Status ContainerWriter::WriteKeyGroupChunk(uint32_t type, std::span<const uint8_t> payload) {
+  const std::string name = type == kChunkBase ? "WriteBase" : "WriteMotion";
+  if (state_ != State::kBegun && state_ != State::kGofs) {
+    return Misuse(name + " must come after Begin and before Finish");
+  }
+  const Status order = key_groups_.AddBaseOrMotion(type == kChunkBase, offset_, name);
+  if (!order.ok()) return Misuse(order.message());
+  index_.key_groups = key_groups_.key_groups();
+  return EmitChunk(type, payload);
+}
+
 Status ContainerWriter::WriteBase(std::span<const uint8_t> base_mesh) {
-  if (state_ != State::kBegun) return Misuse("WriteBase must come after Begin and before any GOF");
-  if (index_.base_offset != 0) return Misuse("WriteBase called twice");
-  index_.base_offset = offset_;
-  return EmitChunk(kChunkBase, base_mesh);
+  return WriteKeyGroupChunk(kChunkBase, base_mesh);
 }
 
 Status ContainerWriter::WriteMotion(std::span<const uint8_t> motion) {
-  if (state_ != State::kBegun) return Misuse("WriteMotion must come after Begin and before any GOF");
-  if (index_.motion_offset != 0) return Misuse("WriteMotion called twice");
-  index_.motion_offset = offset_;
-  return EmitChunk(kChunkMotion, motion);
+  return WriteKeyGroupChunk(kChunkMotion, motion);
 }
 
 Status ContainerWriter::WriteGof(const GroupOfFrames& gof) {
@@ -80,6 +85,8 @@ Status ContainerWriter::WriteGof(const GroupOfFrames& gof) {
   }
   if (frames_written_ + gof.frame_count > UINT32_MAX) return Misuse("more than 2^32 frames");
   index_.gofs.push_back({offset_, gof.first_frame, gof.frame_count});
+  key_groups_.AddGof();
+  index_.key_groups = key_groups_.key_groups();
   frames_written_ += gof.frame_count;
   state_ = State::kGofs;
   return EmitChunk(kChunkGof, EncodeGofPayload(gof));
@@ -94,8 +101,15 @@ Status ContainerWriter::Finish() {
     return Misuse("the header declared frame_count " + std::to_string(header_.frame_count) +
                   " but " + std::to_string(frames_written_) + " frames were written");
   }
+  index_.key_groups = key_groups_.key_groups();
+  if (index_.key_groups.size() > 1 && index_.key_groups.back().first_gof >= index_.gofs.size()) {
+    state_ = State::kFailed;
+    return Misuse("the last key group has no group of frames");
+  }
   const uint64_t index_offset = offset_;
-  MESHVID_RETURN_IF_ERROR(EmitChunk(kChunkIndex, EncodeIndexPayload(index_)));
+  MESHVID_ASSIGN_OR_RETURN(const std::vector<uint8_t> index,
+                           EncodeIndexPayload(index_, kMvidFormatVersion));
+  MESHVID_RETURN_IF_ERROR(EmitChunk(kChunkIndex, index));
   MESHVID_RETURN_IF_ERROR(EmitChunk(kChunkTrailer, EncodeTrailerPayload(index_offset)));
   state_ = State::kFinished;
   return Status::Ok();

@@ -9,6 +9,7 @@ namespace {
 constexpr size_t kMinStreamInfoSize = 4 + 12 + 4;
 // Smallest encoded INDX entry: offset(u64) first_frame(u32) frame_count(u32).
 constexpr size_t kIndexEntrySize = 16;
+constexpr size_t kKeyGroupEntrySize = 20;
 
 Status TooMany(const ByteReader& reader, std::string_view what, uint64_t count, uint64_t limit) {
   return reader.Error(std::string(what) + " " + std::to_string(count) +
@@ -154,10 +155,52 @@ StatusOr<GroupOfFrames> DecodeGofPayload(std::span<const uint8_t> payload, size_
   return gof;
 }
 
-std::vector<uint8_t> EncodeIndexPayload(const ContainerIndex& index) {
+size_t ContainerIndex::KeyGroupOfGof(size_t gof) const {
+  size_t k = 0;
+  while (k + 1 < key_groups.size() && key_groups[k + 1].first_gof <= gof) ++k;
+  return k;
+}
+
+Status KeyGroupTracker::AddBaseOrMotion(bool is_base, uint64_t offset,
+                                        const std::string& context) {
+  KeyGroupEntry* current = &key_groups_.back();
+  const bool has_gofs = gof_count_ > current->first_gof;
+  if (has_gofs) {
+    if (version_ < 2) {
+      return CorruptError(context + ": BASE and MOTN must come before the first GOF in a " +
+                          "format_version 1 file");
+    }
+    key_groups_.push_back({0, 0, gof_count_});
+    current = &key_groups_.back();
+  }
+  uint64_t& slot = is_base ? current->base_offset : current->motion_offset;
+  if (slot != 0) {
+    return CorruptError(context + ": a second " + (is_base ? "BASE" : "MOTN") + " in key group " +
+                        std::to_string(key_groups_.size() - 1) + " before any of its GOFs");
+  }
+  slot = offset;
+  return Status::Ok();
+}
+
+StatusOr<std::vector<uint8_t>> EncodeIndexPayload(const ContainerIndex& index,
+                                                  uint32_t format_version) {
+  if (index.key_groups.empty() || (format_version < 2 && index.key_groups.size() != 1)) {
+    return InvalidArgumentError("INDX of format_version " + std::to_string(format_version) +
+                                " cannot hold " + std::to_string(index.key_groups.size()) +
+                                " key groups");
+  }
   ByteWriter writer;
-  writer.PutU64(index.base_offset);
-  writer.PutU64(index.motion_offset);
+  if (format_version < 2) {
+    writer.PutU64(index.key_groups[0].base_offset);
+    writer.PutU64(index.key_groups[0].motion_offset);
+  } else {
+    writer.PutU32(static_cast<uint32_t>(index.key_groups.size()));
+    for (const KeyGroupEntry& key_group : index.key_groups) {
+      writer.PutU64(key_group.base_offset);
+      writer.PutU64(key_group.motion_offset);
+      writer.PutU32(key_group.first_gof);
+    }
+  }
   writer.PutU32(static_cast<uint32_t>(index.gofs.size()));
   for (const IndexEntry& entry : index.gofs) {
     writer.PutU64(entry.offset);
@@ -167,11 +210,35 @@ std::vector<uint8_t> EncodeIndexPayload(const ContainerIndex& index) {
   return writer.Release();
 }
 
-StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload, std::string context) {
+StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload,
+                                            uint32_t format_version, std::string context) {
   ByteReader reader(payload, std::move(context));
   ContainerIndex index;
-  MESHVID_ASSIGN_OR_RETURN(index.base_offset, reader.ReadU64("base_offset"));
-  MESHVID_ASSIGN_OR_RETURN(index.motion_offset, reader.ReadU64("motion_offset"));
+  if (format_version < 2) {
+    KeyGroupEntry& only = index.key_groups.emplace_back();
+    MESHVID_ASSIGN_OR_RETURN(only.base_offset, reader.ReadU64("base_offset"));
+    MESHVID_ASSIGN_OR_RETURN(only.motion_offset, reader.ReadU64("motion_offset"));
+  } else {
+    MESHVID_ASSIGN_OR_RETURN(const uint32_t key_group_count, reader.ReadU32("key_group_count"));
+    if (key_group_count == 0 || key_group_count > reader.remaining() / kKeyGroupEntrySize) {
+      return reader.Error("key_group_count " + std::to_string(key_group_count) +
+                          " does not fit the " + std::to_string(reader.remaining()) +
+                          " bytes left (at least 1 entry of " +
+                          std::to_string(kKeyGroupEntrySize) + " bytes each)");
+    }
+    index.key_groups.resize(key_group_count);
+    for (uint32_t k = 0; k < key_group_count; ++k) {
+      KeyGroupEntry& entry = index.key_groups[k];
+      MESHVID_ASSIGN_OR_RETURN(entry.base_offset, reader.ReadU64("base_offset"));
+      MESHVID_ASSIGN_OR_RETURN(entry.motion_offset, reader.ReadU64("motion_offset"));
+      MESHVID_ASSIGN_OR_RETURN(entry.first_gof, reader.ReadU32("first_gof"));
+      if (k == 0 ? entry.first_gof != 0 : entry.first_gof <= index.key_groups[k - 1].first_gof) {
+        return reader.Error("key group " + std::to_string(k) + " first_gof " +
+                            std::to_string(entry.first_gof) +
+                            (k == 0 ? " is not 0" : " does not follow the previous key group's"));
+      }
+    }
+  }
   MESHVID_ASSIGN_OR_RETURN(const uint32_t gof_count, reader.ReadU32("gof_count"));
   if (gof_count != reader.remaining() / kIndexEntrySize ||
       reader.remaining() % kIndexEntrySize != 0) {
@@ -199,6 +266,9 @@ StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload, st
                             " does not follow the previous group's frames");
       }
     }
+  }
+  if (index.key_groups.size() > 1 && index.key_groups.back().first_gof >= gof_count) {
+    return reader.Error("the last key group holds no group of frames");
   }
   return index;
 }

@@ -59,12 +59,42 @@ struct IndexEntry {
   bool operator==(const IndexEntry&) const = default;
 };
 
-/// The INDX chunk.
+/// One key group of the INDX chunk: a run of groups of frames that share one BASE and MOTN.
+struct KeyGroupEntry {
+  uint64_t base_offset = 0;    ///< file offset of the key group's BASE chunk, 0 if absent
+  uint64_t motion_offset = 0;  ///< file offset of the key group's MOTN chunk, 0 if absent
+  uint32_t first_gof = 0;      ///< index of the key group's first GOF
+  bool operator==(const KeyGroupEntry&) const = default;
+};
+
+/// The INDX chunk. Version 1 stores one key group (its base and motion offsets) implicitly.
 struct ContainerIndex {
-  uint64_t base_offset = 0;    ///< file offset of the BASE chunk, 0 if absent
-  uint64_t motion_offset = 0;  ///< file offset of the MOTN chunk, 0 if absent
+  std::vector<KeyGroupEntry> key_groups;  ///< at least one; first_gof 0, then increasing
   std::vector<IndexEntry> gofs;
   bool operator==(const ContainerIndex&) const = default;
+  /// The key group GOF `gof` belongs to (the last whose first_gof <= gof).
+  size_t KeyGroupOfGof(size_t gof) const;
+};
+
+/// Builds the key groups of a container from its chunks in file order and enforces their
+/// order rules: a key group's BASE and MOTN come at most once each, before its first GOF; a
+/// BASE or MOTN after a GOF starts the next key group (format_version 2 only).
+class KeyGroupTracker {
+ public:
+  explicit KeyGroupTracker(uint32_t format_version) : version_(format_version) {
+    key_groups_.push_back({});
+  }
+  /// A BASE or MOTN chunk at `offset`; kCorrupt (prefixed by `context`) when out of order.
+  Status AddBaseOrMotion(bool is_base, uint64_t offset, const std::string& context);
+  /// A GOF chunk (the next in file order).
+  void AddGof() { ++gof_count_; }
+  /// The key groups so far (at least one).
+  const std::vector<KeyGroupEntry>& key_groups() const { return key_groups_; }
+
+ private:
+  uint32_t version_;
+  uint32_t gof_count_ = 0;
+  std::vector<KeyGroupEntry> key_groups_;
 };
 
 /// Checks a header a writer is about to store (rate, codec tags, sizes within the limits).
@@ -82,10 +112,13 @@ StatusOr<GroupOfFrames> DecodeGofPayload(std::span<const uint8_t> payload, size_
 /// Bytes at the start of a GOF payload holding gof_index, first_frame, frame_count.
 inline constexpr size_t kGofPrefixSize = 12;
 
-/// INDX payload bytes, and back. Decoding checks that entries are in increasing offset order
-/// with contiguous frames.
-std::vector<uint8_t> EncodeIndexPayload(const ContainerIndex& index);
-StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload, std::string context);
+/// INDX payload bytes of `format_version` (1: exactly one key group), and back. Decoding
+/// checks that entries are in increasing offset order with contiguous frames, and that every
+/// key group but a version-1 file's holds at least one GOF.
+StatusOr<std::vector<uint8_t>> EncodeIndexPayload(const ContainerIndex& index,
+                                                  uint32_t format_version);
+StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload,
+                                            uint32_t format_version, std::string context);
 
 /// TRLR payload (u64 index_offset), and back.
 std::vector<uint8_t> EncodeTrailerPayload(uint64_t index_offset);

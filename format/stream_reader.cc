@@ -63,7 +63,9 @@ StatusOr<ContainerHeader> StreamReader::ReadHeader() {
   in_.read(reinterpret_cast<char*>(preamble.data()), preamble.size());
   const size_t got = static_cast<size_t>(in_.gcount());
   offset_ += got;
-  MESHVID_RETURN_IF_ERROR(CheckPreamble(std::span<const uint8_t>(preamble).first(got), name_));
+  MESHVID_ASSIGN_OR_RETURN(format_version_,
+                           CheckPreamble(std::span<const uint8_t>(preamble).first(got), name_));
+  key_groups_ = KeyGroupTracker(format_version_);
   MESHVID_ASSIGN_OR_RETURN(RawChunk chunk, ReadChunk());
   const std::string context = ChunkContext(name_, chunk.type, chunk.offset);
   if (chunk.type != kChunkHead) return CorruptError(context + ": the first chunk must be HEAD");
@@ -83,11 +85,9 @@ StatusOr<StreamItem> StreamReader::Next() {
       return CorruptError(context + ": only TRLR may follow INDX");
     }
     if (chunk.type == kChunkBase || chunk.type == kChunkMotion) {
-      uint64_t& slot = chunk.type == kChunkBase ? base_offset_ : motion_offset_;
-      if (slot != 0 || !gof_offsets_.empty()) {
-        return CorruptError(context + ": duplicate, or placed after a group of frames");
-      }
-      slot = chunk.offset;
+      MESHVID_RETURN_IF_ERROR(
+          key_groups_.AddBaseOrMotion(chunk.type == kChunkBase, chunk.offset, context));
+      item.key_group = key_groups_.key_groups().size() - 1;
       item.kind = chunk.type == kChunkBase ? StreamItem::Kind::kBase : StreamItem::Kind::kMotion;
       item.bytes = std::move(chunk.payload);
       return item;
@@ -102,14 +102,16 @@ StatusOr<StreamItem> StreamReader::Next() {
                             " / " + std::to_string(next_frame_) + ")");
       }
       gof_offsets_.push_back(chunk.offset);
+      key_groups_.AddGof();
+      item.key_group = key_groups_.key_groups().size() - 1;
       next_frame_ += item.gof.frame_count;
       item.kind = StreamItem::Kind::kGof;
       return item;
     }
     if (chunk.type == kChunkIndex) {
-      MESHVID_ASSIGN_OR_RETURN(item.index, DecodeIndexPayload(chunk.payload, context));
-      bool matches = item.index.base_offset == base_offset_ &&
-                     item.index.motion_offset == motion_offset_ &&
+      MESHVID_ASSIGN_OR_RETURN(item.index,
+                               DecodeIndexPayload(chunk.payload, format_version_, context));
+      bool matches = item.index.key_groups == key_groups_.key_groups() &&
                      item.index.gofs.size() == gof_offsets_.size();
       for (size_t k = 0; matches && k < gof_offsets_.size(); ++k) {
         matches = item.index.gofs[k].offset == gof_offsets_[k];

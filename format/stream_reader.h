@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "format/chunk.h"
 #include "format/payloads.h"
 #include "format/status.h"
 
@@ -33,6 +34,8 @@ struct StreamItem {
     kEnd,     ///< TRLR read: the stream is complete
   };
   Kind kind = Kind::kEnd;
+  /// The key group a kBase, kMotion or kGof item belongs to (0-based).
+  size_t key_group = 0;
   std::vector<uint8_t> bytes;
   GroupOfFrames gof;
   ContainerIndex index;
@@ -74,8 +77,8 @@ class StreamReader {
   bool ended_ = false;
   uint64_t offset_ = 0;
   uint64_t next_frame_ = 0;
-  uint64_t base_offset_ = 0;
-  uint64_t motion_offset_ = 0;
+  uint32_t format_version_ = kMvidFormatVersion;
+  KeyGroupTracker key_groups_{kMvidFormatVersion};
   uint64_t index_offset_ = 0;
   bool index_seen_ = false;
   std::vector<uint64_t> gof_offsets_;

@@ -41,7 +41,11 @@ class Validator {
     std::array<uint8_t, kPreambleSize> preamble{};
     const size_t got = size < kPreambleSize ? size : kPreambleSize;
     if (!Check(source_.ReadAt(0, std::span<uint8_t>(preamble).first(got)))) return;
-    if (!Check(CheckPreamble(std::span<const uint8_t>(preamble).first(got), name()))) return;
+    StatusOr<uint32_t> version =
+        CheckPreamble(std::span<const uint8_t>(preamble).first(got), name());
+    if (!Check(version.ok() ? Status::Ok() : version.status())) return;
+    format_version_ = *version;
+    key_groups_ = KeyGroupTracker(format_version_);
     uint64_t offset = kPreambleSize;
     bool trailer_seen = false;
     while (offset < size && !trailer_seen) {
@@ -115,10 +119,7 @@ class Validator {
       report_.header = *decoded;
       report_.header_ok = true;
     } else if (header.type == kChunkBase || header.type == kChunkMotion) {
-      uint64_t& slot = header.type == kChunkBase ? base_offset_ : motion_offset_;
-      if (slot != 0) Fail(context + ": duplicate chunk");
-      if (!gofs_.empty()) Fail(context + ": must come before the first GOF");
-      slot = offset;
+      Check(key_groups_.AddBaseOrMotion(header.type == kChunkBase, offset, context));
     } else if (header.type == kChunkGof) {
       VisitGof(payload, offset, context);
     } else if (header.type == kChunkIndex) {
@@ -148,6 +149,7 @@ class Validator {
            std::to_string(gofs_.size()) + " / " + std::to_string(report_.frame_count) + ")");
     }
     gofs_.push_back({offset, gof->first_frame, gof->frame_count});
+    key_groups_.AddGof();
     ++report_.gof_count;
     report_.frame_count += gof->frame_count;
   }
@@ -155,11 +157,18 @@ class Validator {
   void VisitIndex(std::span<const uint8_t> payload, uint64_t offset, const std::string& context) {
     if (index_offset_ != 0) return Fail(context + ": duplicate INDX");
     index_offset_ = offset;
-    StatusOr<ContainerIndex> index = DecodeIndexPayload(payload, context);
+    StatusOr<ContainerIndex> index = DecodeIndexPayload(payload, format_version_, context);
     if (!index.ok()) return IndexFail(index.status().message());
     index_decoded_ = true;
-    if (index->base_offset != base_offset_ || index->motion_offset != motion_offset_) {
-      IndexFail(context + ": base_offset/motion_offset do not match the BASE/MOTN chunks");
+    const std::vector<KeyGroupEntry>& present = key_groups_.key_groups();
+    report_.key_group_count = static_cast<uint32_t>(present.size());
+    if (present.size() > 1 && present.back().first_gof >= gofs_.size()) {
+      Fail(context + ": the last key group has no group of frames");
+    }
+    if (index->key_groups != present) {
+      IndexFail(context + ": lists " + std::to_string(index->key_groups.size()) +
+                " key groups that do not match the " + std::to_string(present.size()) +
+                " key groups (BASE/MOTN offsets, first GOFs) of the file");
     }
     if (index->gofs.size() != gofs_.size()) {
       return IndexFail(context + ": lists " + std::to_string(index->gofs.size()) +
@@ -175,8 +184,8 @@ class Validator {
 
   ByteSource& source_;
   ValidationReport& report_;
-  uint64_t base_offset_ = 0;
-  uint64_t motion_offset_ = 0;
+  uint32_t format_version_ = kMvidFormatVersion;
+  KeyGroupTracker key_groups_{kMvidFormatVersion};
   uint64_t index_offset_ = 0;
   int index_errors_ = 0;
   bool index_decoded_ = false;

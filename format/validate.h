@@ -32,6 +32,7 @@ struct ValidationReport {
   ContainerHeader header;            ///< HEAD contents when header_ok
   uint32_t gof_count = 0;            ///< GOF chunks that decoded
   uint64_t frame_count = 0;          ///< frames in those GOFs
+  uint32_t key_group_count = 0;      ///< key groups (runs of GOFs sharing a BASE), from INDX
   bool has_index = false;            ///< INDX and TRLR present and CRC-valid
   bool index_consistent = false;     ///< INDX and TRLR agree with the chunks present
   std::vector<std::string> errors;   ///< every problem found, in file order; empty when valid

@@ -156,11 +156,11 @@ TEST(FormatBadInputTest, WrongMagicAndVersionAreNamed) {
   EXPECT_EQ(ContainerReader::OpenMemory(file, "a.mvid").status().ToString(),
             "corrupt: a.mvid: not a .mvid file (the first 4 bytes are not \"MVID\")");
   file = SmallFile();
-  file[4] = 2;
+  file[4] = 3;
   const Status version = ContainerReader::OpenMemory(file, "a.mvid").status();
   EXPECT_EQ(version.code(), StatusCode::kUnsupported);
   EXPECT_EQ(version.message(),
-            "a.mvid: .mvid format_version 2 is not supported (this build reads version 1)");
+            "a.mvid: .mvid format_version 3 is not supported (this build reads versions 1 to 2)");
   std::istringstream in(std::string(file.begin(), file.end()));
   EXPECT_EQ(StreamReader(in, "pipe").ReadHeader().status().code(), StatusCode::kUnsupported);
   EXPECT_EQ(ValidateContainer(std::vector<uint8_t>{'M', 'V'}, "b").errors.at(0),

@@ -108,7 +108,8 @@ TEST(FormatContainerTest, IndexSeekReadsOnlyWhatItNeeds) {
   // Open reads: preamble, HEAD chunk, TRLR, INDX chunk. Nothing else.
   const uint64_t head_chunk = kChunkHeaderSize + EncodeHeaderPayload(SampleHeader(18)).size() +
                               kChunkCrcSize;
-  const uint64_t index_chunk = kChunkHeaderSize + 8 + 8 + 4 + 5 * 16 + kChunkCrcSize;
+  // key_group_count, one key group (base_offset, motion_offset, first_gof), gof_count, 5 GOFs.
+  const uint64_t index_chunk = kChunkHeaderSize + 4 + 20 + 4 + 5 * 16 + kChunkCrcSize;
   EXPECT_EQ(source->bytes_read, kPreambleSize + head_chunk + kTrailerChunkSize + index_chunk);
   // Seeking to GOF 3 reads exactly GOF 3's chunk.
   source->bytes_read = 0;
@@ -197,8 +198,11 @@ TEST(FormatContainerTest, WriterRejectsOutOfOrderCalls) {
   EXPECT_EQ(writer.WriteGof(one_stream).message(),
             "ContainerWriter: GOF 0 has 1 packet lists for 2 streams");
   ASSERT_TRUE(writer.WriteGof(SampleGof(0, 4)).ok());
-  EXPECT_EQ(writer.WriteBase(Bytes("late")).message(),
-            "ContainerWriter: WriteBase must come after Begin and before any GOF");
+  // A BASE after a GOF starts key group 1; a second one before its GOFs is refused.
+  ASSERT_TRUE(writer.WriteBase(Bytes("next")).ok());
+  EXPECT_EQ(writer.key_group(), 1u);
+  EXPECT_EQ(writer.WriteBase(Bytes("again")).message(),
+            "ContainerWriter: WriteBase: a second BASE in key group 1 before any of its GOFs");
   EXPECT_EQ(writer.Finish().message(),
             "ContainerWriter: the header declared frame_count 8 but 4 frames were written");
 }
@@ -226,7 +230,7 @@ TEST(FormatContainerTest, ValidateReportsChunksAndIndex) {
   // An index pointing at the wrong GOF: CRC-valid but inconsistent.
   std::vector<uint8_t> moved = file;
   const uint64_t index_offset = report.chunks[8].offset;
-  const size_t entry0 = index_offset + kChunkHeaderSize + 20;
+  const size_t entry0 = index_offset + kChunkHeaderSize + 28;
   moved[entry0] += 1;  // entry 0 offset off by one; re-seal the INDX CRC
   const size_t index_end = index_offset + kChunkHeaderSize + report.chunks[8].payload_size;
   ByteWriter crc;
@@ -241,6 +245,96 @@ TEST(FormatContainerTest, ValidateReportsChunksAndIndex) {
                                ": entry 0 does not match the GOF chunk at " +
                                std::to_string(report.chunks[3].offset));
   EXPECT_EQ(bad.ToStatus().code(), StatusCode::kCorrupt);
+}
+
+// Three key groups: BASE+MOTN, 2 GOFs | BASE+MOTN, 1 GOF | BASE only, 2 GOFs (18 frames).
+std::vector<uint8_t> WriteKeyGroups() {
+  std::vector<uint8_t> file;
+  ContainerWriter writer([&](std::span<const uint8_t> bytes) {
+    file.insert(file.end(), bytes.begin(), bytes.end());
+    return Status::Ok();
+  });
+  EXPECT_TRUE(writer.Begin(SampleHeader(18)).ok());
+  const std::vector<GroupOfFrames> gofs = SampleGofs();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(writer.WriteBase(Bytes("base " + std::to_string(k))).ok());
+    if (k < 2) EXPECT_TRUE(writer.WriteMotion(Bytes("motion " + std::to_string(k))).ok());
+    const uint32_t first = k == 0 ? 0 : k == 1 ? 2 : 3;
+    const uint32_t end = k == 0 ? 2 : k == 1 ? 3 : 5;
+    for (uint32_t g = first; g < end; ++g) EXPECT_TRUE(writer.WriteGof(gofs[g]).ok());
+    EXPECT_EQ(writer.key_group(), static_cast<size_t>(k));
+  }
+  EXPECT_TRUE(writer.Finish().ok());
+  return file;
+}
+
+TEST(FormatContainerTest, KeyGroupsAreIndexedScannedStreamedAndValidated) {
+  const std::vector<uint8_t> file = WriteKeyGroups();
+  const ValidationReport report = ValidateContainer(file, "keys.mvid");
+  EXPECT_TRUE(report.ok()) << report.ToText();
+  EXPECT_EQ(report.key_group_count, 3u);
+  EXPECT_EQ(report.frame_count, 18u);
+
+  auto expect_key_groups = [](ContainerReader& reader, size_t count) {
+    ASSERT_EQ(reader.key_groups().size(), count);
+    const std::vector<size_t> first_gof = {0, 2, 3};
+    for (size_t k = 0; k < count; ++k) {
+      EXPECT_EQ(reader.key_groups()[k].first_gof, first_gof[k]);
+      const auto base = reader.ReadBase(k);
+      ASSERT_TRUE(base.ok()) << base.status().message();
+      EXPECT_EQ(*base, Bytes("base " + std::to_string(k)));
+      EXPECT_EQ(reader.ReadMotion(k).ok(), k < 2);
+    }
+    EXPECT_EQ(reader.KeyGroupOfGof(0), 0u);
+    EXPECT_EQ(reader.KeyGroupOfGof(1), 0u);
+    EXPECT_EQ(reader.KeyGroupOfGof(2), 1u);
+    if (count == 3) EXPECT_EQ(reader.GofsOfKeyGroup(2), (std::pair<size_t, size_t>{3, 5}));
+  };
+  auto indexed = ContainerReader::OpenMemory(file, "keys.mvid");
+  ASSERT_TRUE(indexed.ok());
+  EXPECT_TRUE(indexed->used_index());
+  EXPECT_EQ(indexed->format_version(), 2u);
+  expect_key_groups(*indexed, 3);
+
+  // Cut inside the third key group's BASE: the scan offers the first two key groups whole.
+  const size_t third_base = report.chunks[8].offset;
+  ASSERT_EQ(report.chunks[8].type, "BASE");
+  auto cut = ContainerReader::OpenMemory(
+      std::vector<uint8_t>(file.begin(), file.begin() + third_base + 10), "cut.mvid");
+  ASSERT_TRUE(cut.ok());
+  EXPECT_FALSE(cut->used_index());
+  expect_key_groups(*cut, 2);
+  EXPECT_EQ(cut->frame_count(), 12u);
+
+  // Streamed: every item names its key group.
+  std::istringstream in(std::string(file.begin(), file.end()));
+  StreamReader stream(in, "pipe");
+  ASSERT_TRUE(stream.ReadHeader().ok());
+  std::vector<std::pair<int, size_t>> items;
+  while (true) {
+    auto item = stream.Next();
+    ASSERT_TRUE(item.ok()) << item.status().message();
+    if (item->kind == StreamItem::Kind::kEnd) break;
+    if (item->kind != StreamItem::Kind::kIndex) {
+      items.push_back({static_cast<int>(item->kind), item->key_group});
+    }
+  }
+  const int base = static_cast<int>(StreamItem::Kind::kBase);
+  const int motion = static_cast<int>(StreamItem::Kind::kMotion);
+  const int gof = static_cast<int>(StreamItem::Kind::kGof);
+  EXPECT_EQ(items, (std::vector<std::pair<int, size_t>>{{base, 0}, {motion, 0}, {gof, 0},
+                                                         {gof, 0}, {base, 1}, {motion, 1},
+                                                         {gof, 1}, {base, 2}, {gof, 2},
+                                                         {gof, 2}}));
+}
+
+TEST(FormatContainerTest, AKeyGroupWithoutGroupsOfFramesIsRefused) {
+  ContainerWriter writer([](std::span<const uint8_t>) { return Status::Ok(); });
+  ASSERT_TRUE(writer.Begin(SampleHeader(0)).ok());
+  ASSERT_TRUE(writer.WriteBase(Bytes("b0")).ok());
+  ASSERT_TRUE(writer.WriteGof(SampleGof(0, 4)).ok());
+  ASSERT_TRUE(writer.WriteBase(Bytes("b1")).ok());
+  EXPECT_EQ(writer.Finish().message(), "ContainerWriter: the last key group has no group of frames");
 }
 
 // The minimal file of the spec's annotated hex dump: one stream, one 2-frame GOF.
@@ -284,7 +378,7 @@ std::string HexDump(const std::vector<uint8_t>& bytes) {
 
 TEST(FormatContainerTest, SpecHexDumpMatchesTheWriter) {
   const std::vector<uint8_t> file = MinimalFile();
-  EXPECT_EQ(file.size(), 267u);
+  EXPECT_EQ(file.size(), 275u);
   EXPECT_TRUE(ValidateContainer(file).ok());
   const std::filesystem::path spec =
       std::filesystem::path(__FILE__).parent_path().parent_path() / "spec" / "mvid-container.md";

@@ -54,6 +54,8 @@ class StreamReader {
   /// error (kCorrupt) naming the offset, after every complete item before the damage.
   StatusOr<StreamItem> Next();
 
+  /// The preamble's format_version (valid after ReadHeader).
+  uint32_t format_version() const { return format_version_; }
   /// Bytes consumed so far.
   uint64_t offset() const { return offset_; }
   /// Groups of frames delivered so far.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <optional>
 #include <utility>
 
 #include "codec/common/subdivision.h"
@@ -90,6 +92,32 @@ float DetailAt(const Eigen::Vector3f& rest, int frame) {
   return 0.02f * std::sin(5 * rest.x()) * std::cos(3 * rest.y() + 0.2f * frame);
 }
 
+namespace {
+
+/// Writes frames [first, end) with the writer's current key group, in groups of gof_size.
+Status WriteAnalyticFrames(MvidWriter& writer, int first_frame, int end) {
+  // The detail is a function of where each sample sits on the decoded, unposed base.
+  const RegularSubdivision& lattice = writer.subdivision();
+  std::vector<Eigen::Vector3f> rest_points, rest_directions;
+  EvaluateSampleFrames(lattice, lattice.levels(), writer.decoded_base().positions,
+                       ComputeVertexNormals(writer.decoded_base()), &rest_points,
+                       &rest_directions);
+  const int gof_size = writer.settings().gof_size;
+  for (int first = first_frame; first < end; first += gof_size) {
+    std::vector<std::vector<RigidTransform>> transforms;
+    std::vector<std::vector<float>> displacements;
+    for (int f = first; f < std::min(end, first + gof_size); ++f) {
+      transforms.push_back(TransformsAt(f));
+      auto& field = displacements.emplace_back();
+      for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
+    }
+    MESHVID_RETURN_IF_ERROR(writer.WriteGroup(transforms, displacements));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
                                                       const MotionModel& motion, int frames,
                                                       const MvidWriterSettings& settings,
@@ -101,21 +129,34 @@ StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
                                               return Status::Ok();
                                             },
                                             base, motion, settings));
-  // The detail is a function of where each sample sits on the decoded, unposed base.
-  const RegularSubdivision& lattice = writer->subdivision();
-  std::vector<Eigen::Vector3f> rest_points, rest_directions;
-  EvaluateSampleFrames(lattice, lattice.levels(), writer->decoded_base().positions,
-                       ComputeVertexNormals(writer->decoded_base()), &rest_points,
-                       &rest_directions);
-  for (int first = 0; first < frames; first += settings.gof_size) {
-    std::vector<std::vector<RigidTransform>> transforms;
-    std::vector<std::vector<float>> displacements;
-    for (int f = first; f < std::min(frames, first + settings.gof_size); ++f) {
-      transforms.push_back(TransformsAt(f));
-      auto& field = displacements.emplace_back();
-      for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
+  MESHVID_RETURN_IF_ERROR(WriteAnalyticFrames(*writer, 0, frames));
+  MESHVID_RETURN_IF_ERROR(writer->Finish());
+  if (stats != nullptr) *stats = writer->stats();
+  return bytes;
+}
+
+StatusOr<std::vector<std::uint8_t>> WriteAnalyticKeyGroups(
+    const std::vector<AnalyticKeyGroup>& key_groups, int frames,
+    const MvidWriterSettings& settings, MvidWriteStats* stats) {
+  if (key_groups.empty() || key_groups[0].first_frame != 0) {
+    return InvalidArgumentError("the first key group must start at frame 0");
+  }
+  std::vector<std::uint8_t> bytes;
+  std::unique_ptr<MvidWriter> writer;
+  for (std::size_t k = 0; k < key_groups.size(); ++k) {
+    const TriangleMesh& base = key_groups[k].base;
+    if (k == 0) {
+      MESHVID_ASSIGN_OR_RETURN(writer, MvidWriter::Create(
+                                           [&bytes](std::span<const std::uint8_t> b) {
+                                             bytes.insert(bytes.end(), b.begin(), b.end());
+                                             return Status::Ok();
+                                           },
+                                           base, TwoSegments(base), settings));
+    } else {
+      MESHVID_RETURN_IF_ERROR(writer->StartKeyGroup(base, TwoSegments(base)));
     }
-    MESHVID_RETURN_IF_ERROR(writer->WriteGroup(transforms, displacements));
+    const int end = k + 1 < key_groups.size() ? key_groups[k + 1].first_frame : frames;
+    MESHVID_RETURN_IF_ERROR(WriteAnalyticFrames(*writer, key_groups[k].first_frame, end));
   }
   MESHVID_RETURN_IF_ERROR(writer->Finish());
   if (stats != nullptr) *stats = writer->stats();
@@ -147,17 +188,23 @@ std::vector<Eigen::Vector3f> ExactPositions(const MvidDecoder& decoder, int fram
 
 StatusOr<ReconstructionError> MeasureReconstructionError(MvidDecoder& decoder, int level,
                                                          int frames) {
-  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
-                           RegularSubdivision::Create(decoder.base_mesh(), decoder.info().levels));
   ReconstructionError error;
   double sum_squares = 0;
   std::size_t count = 0;
   std::vector<Eigen::Vector3f> positions;
+  std::optional<RegularSubdivision> lattice;
+  std::uint32_t lattice_key_group = 0;
   for (int f = 0; f < frames; ++f) {
     MESHVID_RETURN_IF_ERROR(decoder.DecodePositions(f, level, &positions));
+    // The lattice of the frame's key group (decoding the frame made it current).
+    if (!lattice || lattice_key_group != decoder.current_key_group()) {
+      MESHVID_ASSIGN_OR_RETURN(lattice, RegularSubdivision::Create(decoder.base_mesh(),
+                                                                   decoder.info().levels));
+      lattice_key_group = decoder.current_key_group();
+    }
     MESHVID_ASSIGN_OR_RETURN(const std::vector<RigidTransform> transforms,
                              decoder.DecodeTransforms(f));
-    const auto exact = ExactPositions(decoder, f, level, transforms, lattice);
+    const auto exact = ExactPositions(decoder, f, level, transforms, *lattice);
     if (exact.size() != positions.size()) return InternalError("sample counts differ");
     for (std::size_t s = 0; s < positions.size(); ++s) {
       const float e = (positions[s] - exact[s]).norm();

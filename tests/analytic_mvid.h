@@ -37,6 +37,19 @@ StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
                                                       const MvidWriterSettings& settings,
                                                       MvidWriteStats* stats = nullptr);
 
+/// One key group of an analytic file: its base mesh (with TwoSegments motion), used from
+/// frame `first_frame` until the next key group's.
+struct AnalyticKeyGroup {
+  TriangleMesh base;
+  int first_frame = 0;
+};
+
+/// Writes `frames` frames in key groups (the first must start at frame 0); groups of frames
+/// are split at key-group boundaries.
+StatusOr<std::vector<std::uint8_t>> WriteAnalyticKeyGroups(
+    const std::vector<AnalyticKeyGroup>& key_groups, int frames,
+    const MvidWriterSettings& settings, MvidWriteStats* stats = nullptr);
+
 /// How far a decoder's reconstruction is from the exact one (the decoded base posed with the
 /// decoded transforms, displaced by the exact DetailAt), over every sample of every frame.
 struct ReconstructionError {

@@ -279,8 +279,9 @@ TEST(MvidBadInputTest, AVideoStreamThatDoesNotDecodeIsAnError) {
   EXPECT_EQ(broken.status().code(), StatusCode::kCorrupt) << broken.status().ToString();
 }
 
-// tests/golden/sphere.v1.mvid: written by this test when MESHVID_WRITE_GOLDEN names a folder,
-// decoded by it always. Never delete a golden file when the format moves on.
+// tests/golden/sphere.v1.mvid: written by this test (with MESHVID_WRITE_GOLDEN) before the
+// writer moved to format_version 2; decoded by it always. Never delete or rewrite a golden file
+// when the format moves on.
 TEST(MvidGoldenTest, Version1FileStillDecodes) {
   Representation rep;
   rep.base = testing::SphereMesh(1);
@@ -291,17 +292,121 @@ TEST(MvidGoldenTest, Version1FileStillDecodes) {
   settings.levels = 2;
   settings.gof_size = 4;
   settings.metadata_json = R"({"golden":"sphere","format_version":1})";
-  if (const char* out = std::getenv("MESHVID_WRITE_GOLDEN")) {
-    const std::vector<std::uint8_t> bytes = WriteRepresentation(rep, settings);
-    std::ofstream(std::string(out) + "/sphere.v1.mvid", std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  }
   auto decoder = MvidDecoder::OpenFile(std::string(MESHVID_GOLDEN_DIR) + "/sphere.v1.mvid");
   ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  EXPECT_EQ((*decoder)->info().format_version, 1u);
+  EXPECT_EQ((*decoder)->info().key_groups.size(), 1u);
   EXPECT_EQ((*decoder)->info().frame_count, 6u);
   EXPECT_EQ((*decoder)->info().base_vertices, 18u);
   EXPECT_EQ((*decoder)->info().metadata_json, settings.metadata_json);
   EXPECT_LE(MaxError(**decoder, 2, rep.frames), kStep / 2 * 1.01f + 1e-6f);
+}
+
+// Three key groups of different bases (18, 66 and 18 vertices): frames 0-4, 5-8, 9-11.
+std::vector<testing::AnalyticKeyGroup> ThreeKeyGroups() {
+  return {{testing::SphereMesh(1), 0}, {testing::SphereMesh(2), 5}, {testing::LatLongSphere(4, 4), 9}};
+}
+
+TEST(MvidKeyGroupTest, EveryKeyGroupDecodesWithItsOwnConnectivity) {
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 2;
+  settings.gof_size = 3;
+  MvidWriteStats stats;
+  auto bytes = testing::WriteAnalyticKeyGroups(ThreeKeyGroups(), 12, settings, &stats);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  auto decoder = MvidDecoder::OpenMemory(*bytes);
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  const MvidInfo& info = (*decoder)->info();
+  EXPECT_EQ(info.format_version, 2u);
+  ASSERT_EQ(info.key_groups.size(), 3u);
+  // Groups of frames split at key-group boundaries: 3+2 | 3+1 | 3.
+  EXPECT_EQ(info.gof_count, 5u);
+  EXPECT_EQ(info.key_groups[1].first_frame, 5u);
+  EXPECT_EQ(info.key_groups[1].frame_count, 4u);
+  EXPECT_EQ(info.key_groups[2].first_gof, 4u);
+  EXPECT_EQ(*(*decoder)->KeyGroupOf(4), 0u);
+  EXPECT_EQ(*(*decoder)->KeyGroupOf(5), 1u);
+  EXPECT_EQ(*(*decoder)->KeyGroupOf(11), 2u);
+
+  // Exact up to quantisation in every key group, read in order and out of order.
+  EXPECT_LE(MaxError(**decoder, 2, 12), kStep / 2 * 1.01f + 1e-6f);
+  const std::vector<std::size_t> vertices = {18, 66, 18};
+  for (std::uint32_t f : {11u, 0u, 7u, 3u, 9u, 5u}) {
+    const std::uint32_t k = *(*decoder)->KeyGroupOf(f);
+    auto mesh = (*decoder)->DecodeFrame(f, 0);
+    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
+    EXPECT_EQ(mesh->vertex_count(), vertices[k]) << f;
+    EXPECT_EQ((*decoder)->current_key_group(), k);
+    auto triangles = (*decoder)->TrianglesOf(f, 1);
+    ASSERT_TRUE(triangles.ok());
+    EXPECT_EQ(triangles.value()->size(), (*decoder)->base_mesh().triangle_count() * 4);
+  }
+  // The same triangles within a key group, different ones across.
+  const auto a = (*decoder)->DecodeFrame(5, 1);
+  const auto b = (*decoder)->DecodeFrame(8, 1);
+  const auto c = (*decoder)->DecodeFrame(9, 1);
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  EXPECT_EQ(a->triangles, b->triangles);
+  EXPECT_NE(a->triangles, c->triangles);
+
+  auto described = (*decoder)->DescribeKeyGroup(1);
+  ASSERT_TRUE(described.ok()) << described.status().ToString();
+  EXPECT_EQ(described->base_vertices, 66u);
+  EXPECT_EQ(described->span.first_frame, 5u);
+  EXPECT_EQ(described->vertices_per_level.back(), (*decoder)->DecodeFrame(6, 2)->vertex_count());
+  auto sizes = (*decoder)->MeasureStreams();
+  ASSERT_TRUE(sizes.ok());
+  ASSERT_EQ(sizes->key_group_bytes.size(), 3u);
+  EXPECT_EQ(sizes->base_bytes, stats.base_bytes);
+  EXPECT_EQ(sizes->motion_bytes, stats.motion_bytes);
+
+  // A stream decodes across key groups front to back.
+  std::istringstream in(std::string(bytes->begin(), bytes->end()));
+  auto stream = MvidDecoder::OpenStream(in);
+  ASSERT_TRUE(stream.ok()) << stream.status().ToString();
+  for (std::uint32_t f = 0; f < 12; ++f) {
+    auto streamed = (*stream)->DecodeFrame(f, 1);
+    auto indexed = (*decoder)->DecodeFrame(f, 1);
+    ASSERT_TRUE(streamed.ok()) << f << ": " << streamed.status().ToString();
+    EXPECT_EQ(streamed->positions, indexed->positions) << f;
+    EXPECT_EQ(streamed->triangles, indexed->triangles) << f;
+  }
+  EXPECT_EQ((*stream)->info().key_groups.size(), 3u);
+
+  // Cut inside the last key group's BASE: the first two key groups still decode.
+  auto reader = ContainerReader::OpenMemory(*bytes);
+  ASSERT_TRUE(reader.ok());
+  const std::uint64_t cut_at = reader->key_groups()[2].base_offset + 20;
+  auto cut = MvidDecoder::OpenMemory(std::vector<std::uint8_t>(bytes->begin(),
+                                                               bytes->begin() + cut_at));
+  ASSERT_TRUE(cut.ok()) << cut.status().ToString();
+  EXPECT_EQ((*cut)->info().frame_count, 9u);
+  EXPECT_EQ((*cut)->info().key_groups.size(), 2u);
+  EXPECT_TRUE((*cut)->DecodeFrame(8, 2).ok());
+}
+
+// tests/golden/sphere.v2.mvid: three key groups, written by this test when
+// MESHVID_WRITE_GOLDEN names a folder, decoded by it always.
+TEST(MvidGoldenTest, Version2FileWithKeyGroupsStillDecodes) {
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 2;
+  settings.gof_size = 3;
+  settings.metadata_json = R"({"golden":"sphere key groups","format_version":2})";
+  if (const char* out = std::getenv("MESHVID_WRITE_GOLDEN")) {
+    auto bytes = testing::WriteAnalyticKeyGroups(ThreeKeyGroups(), 12, settings);
+    ASSERT_TRUE(bytes.ok());
+    std::ofstream(std::string(out) + "/sphere.v2.mvid", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  }
+  auto decoder = MvidDecoder::OpenFile(std::string(MESHVID_GOLDEN_DIR) + "/sphere.v2.mvid");
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  EXPECT_EQ((*decoder)->info().format_version, 2u);
+  EXPECT_EQ((*decoder)->info().frame_count, 12u);
+  EXPECT_EQ((*decoder)->info().key_groups.size(), 3u);
+  EXPECT_EQ((*decoder)->info().metadata_json, settings.metadata_json);
+  EXPECT_LE(MaxError(**decoder, 2, 12), kStep / 2 * 1.01f + 1e-6f);
 }
 
 }  // namespace

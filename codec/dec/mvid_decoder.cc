@@ -13,20 +13,50 @@ namespace meshvid {
 /// One decoded group of frames.
 struct MvidDecoder::Group {
   std::size_t index = 0;
+  std::size_t key_group = 0;
   std::uint32_t first_frame = 0;
   GofSideInfo side;
   const DisplacementLayout* layout = nullptr;  ///< the layout of side.packing
   std::vector<GreyPicture> pictures;  ///< in presentation order, one per frame
 };
 
+/// One decoded key group: its base mesh, motion and what is derived from them.
+struct MvidDecoder::KeyGroup {
+  std::size_t index = 0;
+  TriangleMesh base;
+  MotionModel motion;
+  MotionQuantization quantization;
+  RegularSubdivision subdivision;
+  std::uint64_t base_bytes = 0, motion_bytes = 0;
+  std::map<DisplacementPacking, DisplacementLayout> layouts;
+  std::vector<std::vector<Triangle>> triangles;  ///< per level, filled on first use
+
+  /// Base triangles that are surface (all unless MOTN's mask hides some).
+  std::size_t SurfaceTriangleCount() const {
+    if (motion.surface_triangles.empty()) return base.triangle_count();
+    std::size_t count = 0;
+    for (std::uint8_t kept : motion.surface_triangles) count += kept != 0;
+    return count;
+  }
+};
+
+/// A key group's payloads as read from the input.
+struct KeyGroupBytes {
+  std::vector<std::uint8_t> base, motion;
+};
+
 MvidDecoder::~MvidDecoder() = default;
 
-/// Where the decoder gets its groups of frames from.
+/// Where the decoder gets its groups of frames and key groups from.
 class MvidDecoder::GroupSource {
  public:
   virtual ~GroupSource() = default;
-  /// The group holding `frame` (kInvalidArgument if no readable group holds it).
-  virtual StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) = 0;
+  /// The group holding `frame` and its key group (kInvalidArgument / kNotFound if no readable
+  /// group holds it).
+  virtual StatusOr<std::pair<GroupOfFrames, std::size_t>> ReadGroupHolding(
+      std::uint32_t frame) = 0;
+  /// The BASE and MOTN payloads of key group `k`.
+  virtual StatusOr<KeyGroupBytes> ReadKeyGroup(std::size_t k) = 0;
   /// The container reader for random access, or null for a stream.
   virtual ContainerReader* reader() { return nullptr; }
 };
@@ -35,9 +65,31 @@ class MvidDecoder::GroupSource {
 class MvidDecoder::IndexedGroups : public GroupSource {
  public:
   explicit IndexedGroups(ContainerReader reader) : reader_(std::move(reader)) {}
-  StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) override {
+  StatusOr<std::pair<GroupOfFrames, std::size_t>> ReadGroupHolding(
+      std::uint32_t frame) override {
     MESHVID_ASSIGN_OR_RETURN(const std::size_t k, reader_.FindGof(frame));
-    return reader_.ReadGof(k);
+    MESHVID_ASSIGN_OR_RETURN(GroupOfFrames gof, reader_.ReadGof(k));
+    return std::pair{std::move(gof), reader_.KeyGroupOfGof(k)};
+  }
+  StatusOr<KeyGroupBytes> ReadKeyGroup(std::size_t k) override {
+    KeyGroupBytes bytes;
+    const std::string cut = reader_.used_index() || reader_.scan_status().ok()
+                                ? ""
+                                : " (" + reader_.scan_status().message() + ")";
+    auto read = [&](StatusOr<std::vector<std::uint8_t>> payload,
+                    std::vector<std::uint8_t>* out) -> Status {
+      if (!payload.ok()) {
+        // A cut file's scan says where it stopped, which explains a missing chunk.
+        return payload.status().code() == StatusCode::kNotFound && !cut.empty()
+                   ? CorruptError(payload.status().message() + cut)
+                   : payload.status();
+      }
+      *out = std::move(*payload);
+      return Status::Ok();
+    };
+    MESHVID_RETURN_IF_ERROR(read(reader_.ReadBase(k), &bytes.base));
+    MESHVID_RETURN_IF_ERROR(read(reader_.ReadMotion(k), &bytes.motion));
+    return bytes;
   }
   ContainerReader* reader() override { return &reader_; }
 
@@ -50,7 +102,8 @@ class MvidDecoder::StreamedGroups : public GroupSource {
  public:
   StreamedGroups(std::unique_ptr<StreamReader> stream, std::string name)
       : stream_(std::move(stream)), name_(std::move(name)) {}
-  StatusOr<GroupOfFrames> ReadGroupHolding(std::uint32_t frame) override {
+  StatusOr<std::pair<GroupOfFrames, std::size_t>> ReadGroupHolding(
+      std::uint32_t frame) override {
     if (frame < last_.first_frame) {
       return InvalidArgumentError(name_ + ": a stream decodes forward only; frame " +
                                   std::to_string(frame) + " has passed");
@@ -61,17 +114,47 @@ class MvidDecoder::StreamedGroups : public GroupSource {
         return InvalidArgumentError(name_ + ": the stream ends after frame " +
                                     std::to_string(next_frame_) + " (exclusive)");
       }
-      if (item.kind != StreamItem::Kind::kGof) continue;
-      last_ = std::move(item.gof);
-      next_frame_ = last_.first_frame + last_.frame_count;
+      Keep(std::move(item));
     }
-    return last_;
+    return std::pair{last_, last_key_group_};
+  }
+  StatusOr<KeyGroupBytes> ReadKeyGroup(std::size_t k) override {
+    // Key group 0's chunks come first; later ones arrive before their first group.
+    while (k == 0 && pending_key_group_ == 0 &&
+           (pending_.base.empty() || pending_.motion.empty()) && next_frame_ == 0) {
+      MESHVID_ASSIGN_OR_RETURN(StreamItem item, stream_->Next());
+      if (item.kind != StreamItem::Kind::kBase && item.kind != StreamItem::Kind::kMotion) {
+        return CorruptError(name_ + ": the base mesh and motion must precede every group");
+      }
+      Keep(std::move(item));
+    }
+    if (k != pending_key_group_ || pending_.base.empty() || pending_.motion.empty()) {
+      return CorruptError(name_ + ": key group " + std::to_string(k) +
+                          " has no BASE and MOTN chunk before its groups of frames");
+    }
+    return pending_;
   }
 
  private:
+  void Keep(StreamItem item) {
+    if (item.kind == StreamItem::Kind::kBase || item.kind == StreamItem::Kind::kMotion) {
+      if (item.key_group != pending_key_group_) pending_ = {};
+      pending_key_group_ = item.key_group;
+      (item.kind == StreamItem::Kind::kBase ? pending_.base : pending_.motion) =
+          std::move(item.bytes);
+    } else if (item.kind == StreamItem::Kind::kGof) {
+      last_ = std::move(item.gof);
+      last_key_group_ = item.key_group;
+      next_frame_ = last_.first_frame + last_.frame_count;
+    }
+  }
+
   std::unique_ptr<StreamReader> stream_;
   std::string name_;
   GroupOfFrames last_;
+  std::size_t last_key_group_ = 0;
+  KeyGroupBytes pending_;
+  std::size_t pending_key_group_ = 0;
   std::uint32_t next_frame_ = 0;
 };
 
@@ -91,16 +174,27 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenIndexed(
     ContainerReader reader, const MvidDecoderOptions& options) {
   std::unique_ptr<MvidDecoder> decoder(new MvidDecoder());
   decoder->options_ = options;
-  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> base_bytes, reader.ReadBase());
-  MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes, reader.ReadMotion());
-  MESHVID_RETURN_IF_ERROR(
-      decoder->Initialize(reader.header(), base_bytes, motion_bytes, reader.source().name()));
+  MESHVID_RETURN_IF_ERROR(decoder->ReadHeader(reader.header(), reader.source().name()));
   MvidInfo& info = decoder->info_;
   info.frame_count = static_cast<std::uint32_t>(reader.frame_count());
   info.gof_count = static_cast<std::uint32_t>(reader.gof_count());
   info.file_bytes = reader.source().size();
   info.indexed = reader.used_index();
+  info.format_version = reader.format_version();
+  for (std::size_t k = 0; k < reader.key_groups().size(); ++k) {
+    const auto [first, end] = reader.GofsOfKeyGroup(k);
+    MvidKeyGroupSpan span;
+    span.first_gof = static_cast<std::uint32_t>(first);
+    span.gof_count = static_cast<std::uint32_t>(end - first);
+    if (end > first) {
+      span.first_frame = reader.gofs()[first].first_frame;
+      span.frame_count = reader.gofs()[end - 1].first_frame + reader.gofs()[end - 1].frame_count -
+                         span.first_frame;
+    }
+    info.key_groups.push_back(span);
+  }
   decoder->groups_ = std::make_unique<IndexedGroups>(std::move(reader));
+  MESHVID_RETURN_IF_ERROR(decoder->LoadKeyGroup(0));
   return decoder;
 }
 
@@ -111,28 +205,16 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenStream(std::istream& in,
   decoder->options_ = options;
   auto stream = std::make_unique<StreamReader>(in, name);
   MESHVID_ASSIGN_OR_RETURN(const ContainerHeader header, stream->ReadHeader());
-  // BASE and MOTN come before the first group (container chunk order rules).
-  std::vector<std::uint8_t> base_bytes, motion_bytes;
-  while (base_bytes.empty() || motion_bytes.empty()) {
-    MESHVID_ASSIGN_OR_RETURN(StreamItem item, stream->Next());
-    if (item.kind == StreamItem::Kind::kBase) {
-      base_bytes = std::move(item.bytes);
-    } else if (item.kind == StreamItem::Kind::kMotion) {
-      motion_bytes = std::move(item.bytes);
-    } else {
-      return CorruptError(name + ": the base mesh and motion must precede every group");
-    }
-  }
-  MESHVID_RETURN_IF_ERROR(decoder->Initialize(header, base_bytes, motion_bytes, name));
+  MESHVID_RETURN_IF_ERROR(decoder->ReadHeader(header, name));
   decoder->info_.frame_count = header.frame_count;
+  decoder->info_.format_version = stream->format_version();
   decoder->groups_ = std::make_unique<StreamedGroups>(std::move(stream), name);
+  MESHVID_RETURN_IF_ERROR(decoder->LoadKeyGroup(0));
   return decoder;
 }
 
-Status MvidDecoder::Initialize(const ContainerHeader& header,
-                               const std::vector<std::uint8_t>& base_bytes,
-                               const std::vector<std::uint8_t>& motion_bytes,
-                               const std::string& name) {
+Status MvidDecoder::ReadHeader(const ContainerHeader& header, const std::string& name) {
+  name_ = name;
   if (header.streams.size() != 1 || header.streams[0].name != "displacement" ||
       header.streams[0].bit_depth != 10) {
     return UnsupportedError(name + ": expected one 10-bit displacement video stream");
@@ -153,33 +235,104 @@ Status MvidDecoder::Initialize(const ContainerHeader& header,
   info.picture_width = static_cast<int>(header.streams[0].width);
   info.picture_height = static_cast<int>(header.streams[0].height);
   info.metadata_json = header.metadata_json;
-  MESHVID_ASSIGN_OR_RETURN(base_, DecodeBaseMesh(base_bytes));
-  MESHVID_ASSIGN_OR_RETURN(DecodedMotion motion,
-                           DecodeMotionModel(motion_bytes, base_.vertex_count(),
-                                             base_.triangle_count()));
-  motion_ = std::move(motion.model);
-  quantization_ = motion.quantization;
-  MESHVID_ASSIGN_OR_RETURN(subdivision_, RegularSubdivision::Create(base_, info.levels));
-  info.base_vertices = base_.vertex_count();
-  info.base_triangles = base_.triangle_count();
-  info.segments = motion_.segment_count;
-  info.base_bytes = base_bytes.size();
-  info.motion_bytes = motion_bytes.size();
-  for (int level = 0; level <= info.levels; ++level) {
-    info.vertices_per_level.push_back(subdivision_.sample_count(level));
-    info.triangles_per_level.push_back(SurfaceTriangleCount() << (2 * level));
-  }
-  triangles_.resize(info.levels + 1);
   return Status::Ok();
 }
 
+Status MvidDecoder::LoadKeyGroup(std::size_t k) {
+  if (key_group_ && key_group_->index == k) return Status::Ok();
+  const std::string context = name_ + ": key group " + std::to_string(k);
+  MESHVID_ASSIGN_OR_RETURN(const KeyGroupBytes bytes, groups_->ReadKeyGroup(k));
+  auto key_group = std::make_unique<KeyGroup>();
+  key_group->index = k;
+  StatusOr<TriangleMesh> base = DecodeBaseMesh(bytes.base);
+  if (!base.ok()) return base.status().WithContext(context + " BASE");
+  key_group->base = std::move(*base);
+  StatusOr<DecodedMotion> decoded = DecodeMotionModel(
+      bytes.motion, key_group->base.vertex_count(), key_group->base.triangle_count());
+  if (!decoded.ok()) return decoded.status().WithContext(context + " MOTN");
+  DecodedMotion& motion = *decoded;
+  key_group->motion = std::move(motion.model);
+  key_group->quantization = motion.quantization;
+  MESHVID_ASSIGN_OR_RETURN(key_group->subdivision,
+                           RegularSubdivision::Create(key_group->base, info_.levels));
+  key_group->base_bytes = bytes.base.size();
+  key_group->motion_bytes = bytes.motion.size();
+  key_group->triangles.resize(info_.levels + 1);
+  if (k == 0 && info_.vertices_per_level.empty()) {
+    MvidInfo& info = info_;
+    info.base_vertices = key_group->base.vertex_count();
+    info.base_triangles = key_group->base.triangle_count();
+    info.segments = key_group->motion.segment_count;
+    info.base_bytes = key_group->base_bytes;
+    info.motion_bytes = key_group->motion_bytes;
+    for (int level = 0; level <= info.levels; ++level) {
+      info.vertices_per_level.push_back(key_group->subdivision.sample_count(level));
+      info.triangles_per_level.push_back(key_group->SurfaceTriangleCount() << (2 * level));
+    }
+  }
+  key_group_ = std::move(key_group);
+  return Status::Ok();
+}
+
+std::uint32_t MvidDecoder::current_key_group() const {
+  return static_cast<std::uint32_t>(key_group_->index);
+}
+
+const TriangleMesh& MvidDecoder::base_mesh() const { return key_group_->base; }
+
+const MotionModel& MvidDecoder::motion() const { return key_group_->motion; }
+
+StatusOr<std::uint32_t> MvidDecoder::KeyGroupOf(std::uint32_t frame) {
+  if (ContainerReader* reader = groups_->reader()) {
+    MESHVID_ASSIGN_OR_RETURN(const std::size_t gof, reader->FindGof(frame));
+    return static_cast<std::uint32_t>(reader->KeyGroupOfGof(gof));
+  }
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return static_cast<std::uint32_t>(group_->key_group);
+}
+
+StatusOr<MvidKeyGroupInfo> MvidDecoder::DescribeKeyGroup(std::uint32_t k) {
+  if (groups_->reader() == nullptr) {
+    return UnsupportedError("describing a key group needs a file or memory buffer");
+  }
+  if (k >= info_.key_groups.size()) {
+    return NotFoundError(name_ + ": key group " + std::to_string(k) + " does not exist (" +
+                         std::to_string(info_.key_groups.size()) + " readable)");
+  }
+  MESHVID_RETURN_IF_ERROR(LoadKeyGroup(k));
+  group_.reset();  // the current group must belong to the current key group
+  const KeyGroup& key_group = *key_group_;
+  MvidKeyGroupInfo description;
+  description.span = info_.key_groups[k];
+  description.base_vertices = key_group.base.vertex_count();
+  description.base_triangles = key_group.base.triangle_count();
+  description.segments = key_group.motion.segment_count;
+  description.base_bytes = key_group.base_bytes;
+  description.motion_bytes = key_group.motion_bytes;
+  // The picture size follows from the base mesh and the packing; the reference encoder uses
+  // lattice order.
+  const DisplacementLayout layout =
+      DisplacementLayout::ForSubdivision(key_group.subdivision, DisplacementPacking::kLatticeOrder);
+  description.picture_width = layout.width();
+  description.picture_height = layout.height();
+  for (int level = 0; level <= info_.levels; ++level) {
+    description.vertices_per_level.push_back(key_group.subdivision.sample_count(level));
+    description.triangles_per_level.push_back(key_group.SurfaceTriangleCount() << (2 * level));
+  }
+  return description;
+}
+
 StatusOr<const DisplacementLayout*> MvidDecoder::LayoutFor(DisplacementPacking packing) {
-  auto it = layouts_.find(packing);
-  if (it == layouts_.end()) {
-    it = layouts_.emplace(packing, DisplacementLayout::ForSubdivision(subdivision_, packing)).first;
+  auto& layouts = key_group_->layouts;
+  auto it = layouts.find(packing);
+  if (it == layouts.end()) {
+    it = layouts.emplace(packing, DisplacementLayout::ForSubdivision(key_group_->subdivision,
+                                                                     packing)).first;
   }
   const DisplacementLayout& layout = it->second;
-  if (layout.width() != info_.picture_width || layout.height() != info_.picture_height) {
+  // HEAD's picture size is key group 0's; later key groups have the size of their layout.
+  if (key_group_->index == 0 &&
+      (layout.width() != info_.picture_width || layout.height() != info_.picture_height)) {
     return CorruptError("displacement picture is " + std::to_string(info_.picture_width) + "x" +
                         std::to_string(info_.picture_height) + ", the packing of this base " +
                         "mesh and level count needs " + std::to_string(layout.width()) + "x" +
@@ -196,31 +349,33 @@ Status MvidDecoder::CheckLevel(int level) const {
   return Status::Ok();
 }
 
-std::size_t MvidDecoder::SurfaceTriangleCount() const {
-  if (motion_.surface_triangles.empty()) return base_.triangle_count();
-  std::size_t count = 0;
-  for (std::uint8_t kept : motion_.surface_triangles) count += kept != 0;
-  return count;
-}
-
 StatusOr<const std::vector<Triangle>*> MvidDecoder::Triangles(int level) {
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
-  if (triangles_[level].empty()) {
-    triangles_[level] = subdivision_.Triangles(level);
-    if (!motion_.surface_triangles.empty()) {
+  KeyGroup& key_group = *key_group_;
+  std::vector<Triangle>& triangles = key_group.triangles[level];
+  if (triangles.empty()) {
+    triangles = key_group.subdivision.Triangles(level);
+    const std::vector<std::uint8_t>& surface = key_group.motion.surface_triangles;
+    if (!surface.empty()) {
       // Level l has 4^l triangles per base triangle, base triangle by base triangle.
       const std::size_t per_base = std::size_t(1) << (2 * level);
       std::size_t kept = 0;
-      for (std::size_t t = 0; t < motion_.surface_triangles.size(); ++t) {
-        if (!motion_.surface_triangles[t]) continue;
+      for (std::size_t t = 0; t < surface.size(); ++t) {
+        if (!surface[t]) continue;
         for (std::size_t k = 0; k < per_base; ++k) {
-          triangles_[level][kept++] = triangles_[level][t * per_base + k];
+          triangles[kept++] = triangles[t * per_base + k];
         }
       }
-      triangles_[level].resize(kept);
+      triangles.resize(kept);
     }
   }
-  return &triangles_[level];
+  return &triangles;
+}
+
+StatusOr<const std::vector<Triangle>*> MvidDecoder::TrianglesOf(std::uint32_t frame, int level) {
+  MESHVID_RETURN_IF_ERROR(CheckLevel(level));
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return Triangles(level);
 }
 
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
@@ -234,18 +389,27 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
       frame < group_->first_frame + group_->pictures.size()) {
     return Status::Ok();
   }
-  MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, groups_->ReadGroupHolding(frame));
+  MESHVID_ASSIGN_OR_RETURN(const auto read, groups_->ReadGroupHolding(frame));
+  const GroupOfFrames& gof = read.first;
   const std::size_t k = gof.gof_index;
-  const std::string context = "group " + std::to_string(k);
+  group_.reset();
+  MESHVID_RETURN_IF_ERROR(LoadKeyGroup(read.second));
+  if (groups_->reader() == nullptr && read.second >= info_.key_groups.size()) {
+    info_.key_groups.resize(read.second + 1);  // a stream learns its key groups as it reads
+  }
+  const std::string context = name_ + ": group " + std::to_string(k);
   auto group = std::make_unique<Group>();
   group->index = k;
+  group->key_group = read.second;
   group->first_frame = gof.first_frame;
-  MESHVID_ASSIGN_OR_RETURN(group->side, DecodeGofSideInfo(gof.transforms, gof.frame_count,
-                                                          motion_.segment_count, quantization_));
+  MESHVID_ASSIGN_OR_RETURN(group->side,
+                           DecodeGofSideInfo(gof.transforms, gof.frame_count,
+                                             key_group_->motion.segment_count,
+                                             key_group_->quantization));
   MESHVID_ASSIGN_OR_RETURN(group->layout, LayoutFor(group->side.packing));
   MESHVID_ASSIGN_OR_RETURN(
       std::unique_ptr<VideoDecoder> video,
-      VideoDecoder::Create(info_.codec, info_.picture_width, info_.picture_height,
+      VideoDecoder::Create(info_.codec, group->layout->width(), group->layout->height(),
                            group->side.video_config, options_.threads));
   VideoPacket packet;
   for (std::size_t p = 0; p < gof.packets[0].size(); ++p) {
@@ -268,10 +432,22 @@ StatusOr<MvidStreamSizes> MvidDecoder::MeasureStreams() {
   ContainerReader* reader = groups_->reader();
   if (reader == nullptr) return UnsupportedError("stream sizes need a file or memory buffer");
   MvidStreamSizes sizes;
-  for (std::size_t k = 0; k < reader->gof_count(); ++k) {
-    MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, reader->ReadGof(k));
+  sizes.key_group_bytes.assign(reader->key_groups().size(), 0);
+  for (std::size_t k = 0; k < reader->key_groups().size(); ++k) {
+    MESHVID_ASSIGN_OR_RETURN(const KeyGroupBytes bytes, groups_->ReadKeyGroup(k));
+    sizes.base_bytes += bytes.base.size();
+    sizes.motion_bytes += bytes.motion.size();
+    sizes.key_group_bytes[k] += bytes.base.size() + bytes.motion.size();
+  }
+  for (std::size_t g = 0; g < reader->gof_count(); ++g) {
+    MESHVID_ASSIGN_OR_RETURN(const GroupOfFrames gof, reader->ReadGof(g));
+    std::uint64_t bytes = gof.transforms.size();
     sizes.transform_bytes += gof.transforms.size();
-    for (const auto& packet : gof.packets[0]) sizes.video_bytes += packet.size();
+    for (const auto& packet : gof.packets[0]) {
+      sizes.video_bytes += packet.size();
+      bytes += packet.size();
+    }
+    sizes.key_group_bytes[reader->KeyGroupOfGof(g)] += bytes;
   }
   return sizes;
 }
@@ -280,7 +456,7 @@ Status MvidDecoder::DecodeDisplacements(std::uint32_t frame, std::vector<float>*
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
   group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range,
-                 subdivision_.samples().size(), displacements);
+                         key_group_->subdivision.samples().size(), displacements);
   return Status::Ok();
 }
 
@@ -294,12 +470,14 @@ Status MvidDecoder::DecodePositions(std::uint32_t frame, int level,
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
-  PoseVertices(motion_, group_->side.transforms[local], base_.positions, &posed_);
-  ComputeVertexNormals(posed_, base_.triangles, &normals_);
-  EvaluateSampleFrames(subdivision_, level, posed_, normals_, &origins_, &directions_);
-  const std::size_t count = subdivision_.sample_count(level);
+  const KeyGroup& key_group = *key_group_;
+  PoseVertices(key_group.motion, group_->side.transforms[local], key_group.base.positions,
+               &posed_);
+  ComputeVertexNormals(posed_, key_group.base.triangles, &normals_);
+  EvaluateSampleFrames(key_group.subdivision, level, posed_, normals_, &origins_, &directions_);
+  const std::size_t count = key_group.subdivision.sample_count(level);
   group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range, count,
-                 &displacements_);
+                         &displacements_);
   positions->resize(count);
   for (std::size_t s = 0; s < count; ++s) {
     (*positions)[s] = origins_[s] + displacements_[s] * directions_[s];

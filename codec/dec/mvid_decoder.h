@@ -21,7 +21,30 @@
 
 namespace meshvid {
 
-/// What a .mvid holds.
+/// Where a key group's frames are: a run of frames that share one base mesh, so one
+/// connectivity at every level.
+struct MvidKeyGroupSpan {
+  std::uint32_t first_frame = 0;
+  std::uint32_t frame_count = 0;
+  std::uint32_t first_gof = 0;
+  std::uint32_t gof_count = 0;
+};
+
+/// What one key group holds (MvidDecoder::DescribeKeyGroup).
+struct MvidKeyGroupInfo {
+  MvidKeyGroupSpan span;
+  std::size_t base_vertices = 0;
+  std::size_t base_triangles = 0;
+  std::uint32_t segments = 0;
+  std::uint64_t base_bytes = 0;    ///< BASE payload
+  std::uint64_t motion_bytes = 0;  ///< MOTN payload
+  int picture_width = 0;           ///< its displacement pictures
+  int picture_height = 0;
+  std::vector<std::size_t> vertices_per_level;
+  std::vector<std::size_t> triangles_per_level;
+};
+
+/// What a .mvid holds. Base-mesh figures are key group 0's.
 struct MvidInfo {
   double frame_rate = 0;
   std::uint32_t frame_count = 0;  ///< frames readable (all, or those before a cut)
@@ -38,6 +61,9 @@ struct MvidInfo {
   std::uint64_t base_bytes = 0;       ///< BASE payload
   std::uint64_t motion_bytes = 0;     ///< MOTN payload
   bool indexed = false;               ///< groups located through the index (else by scanning)
+  std::uint32_t format_version = 0;   ///< the container's (1: one key group; 2: key groups)
+  /// The readable key groups (files and memory buffers; a stream lists those read so far).
+  std::vector<MvidKeyGroupSpan> key_groups;
   std::string metadata_json;
   /// Vertices and triangles of a decoded frame at each level 0..levels.
   std::vector<std::size_t> vertices_per_level;
@@ -48,6 +74,10 @@ struct MvidInfo {
 struct MvidStreamSizes {
   std::uint64_t transform_bytes = 0;  ///< group side information (transforms, ranges)
   std::uint64_t video_bytes = 0;      ///< displacement video packets
+  std::uint64_t base_bytes = 0;       ///< BASE payloads of every key group
+  std::uint64_t motion_bytes = 0;     ///< MOTN payloads of every key group
+  /// Per key group: its BASE, MOTN, side information and video bytes.
+  std::vector<std::uint64_t> key_group_bytes;
 };
 
 /// Decoder settings.
@@ -56,7 +86,9 @@ struct MvidDecoderOptions {
 };
 
 /// Decodes frames of a .mvid. Frames may be asked for in any order; asking in order is
-/// cheapest (each group of frames is decoded once and kept while its frames are asked for).
+/// cheapest (each group of frames is decoded once and kept while its frames are asked for, and
+/// each key group's base mesh once while its frames are asked for). Every frame of a key group
+/// has the same triangles at a level; frames of different key groups have different ones.
 class MvidDecoder {
  public:
   ~MvidDecoder();
@@ -72,11 +104,20 @@ class MvidDecoder {
                                                            const std::string& name = "<stream>");
 
   const MvidInfo& info() const { return info_; }
-  /// The base mesh as decoded (level 0 before motion).
-  const TriangleMesh& base_mesh() const { return base_; }
-  const MotionModel& motion() const { return motion_; }
-  /// The triangles of every frame at `level` (computed once, then shared).
+  /// The key group holding `frame` (a stream reads up to that frame's group to know).
+  StatusOr<std::uint32_t> KeyGroupOf(std::uint32_t frame);
+  /// The key group whose frames were decoded last (0 after opening).
+  std::uint32_t current_key_group() const;
+  /// Loads key group `k` (files and memory buffers) and describes it.
+  StatusOr<MvidKeyGroupInfo> DescribeKeyGroup(std::uint32_t k);
+  /// The current key group's base mesh as decoded (level 0 before motion).
+  const TriangleMesh& base_mesh() const;
+  /// The current key group's segments and blend weights.
+  const MotionModel& motion() const;
+  /// The current key group's triangles at `level`, those of each of its frames.
   StatusOr<const std::vector<Triangle>*> Triangles(int level);
+  /// The triangles of `frame` at `level` (those of every frame of its key group).
+  StatusOr<const std::vector<Triangle>*> TrianglesOf(std::uint32_t frame, int level);
   /// Positions of frame `frame` at `level`, indexed as Triangles(level).
   Status DecodePositions(std::uint32_t frame, int level, std::vector<Eigen::Vector3f>* positions);
   /// The mesh of frame `frame` at `level` (positions + triangles).
@@ -94,29 +135,27 @@ class MvidDecoder {
   class IndexedGroups;
   class StreamedGroups;
   struct Group;
+  struct KeyGroup;
 
   MvidDecoder() = default;
-  /// Sets up everything from the header, BASE and MOTN payloads; fills info_ but the sizes.
-  Status Initialize(const ContainerHeader& header, const std::vector<std::uint8_t>& base_bytes,
-                    const std::vector<std::uint8_t>& motion_bytes, const std::string& name);
+  /// Checks the header and fills info_ from it.
+  Status ReadHeader(const ContainerHeader& header, const std::string& name);
+  /// Makes key group `k` the current one (decoding its BASE and MOTN unless it already is);
+  /// fills info_'s base figures from key group 0.
+  Status LoadKeyGroup(std::size_t k);
   static StatusOr<std::unique_ptr<MvidDecoder>> OpenIndexed(ContainerReader reader,
                                                             const MvidDecoderOptions& options);
   Status LoadGroupOf(std::uint32_t frame);
-  /// The layout of `packing` (built once), checked against the stream's picture size.
+  /// The current key group's layout of `packing` (built once); key group 0's must have the
+  /// stream's picture size.
   StatusOr<const DisplacementLayout*> LayoutFor(DisplacementPacking packing);
   Status CheckLevel(int level) const;
 
   MvidDecoderOptions options_;
+  std::string name_;
   std::unique_ptr<GroupSource> groups_;
   MvidInfo info_;
-  TriangleMesh base_;
-  MotionModel motion_;
-  MotionQuantization quantization_;
-  RegularSubdivision subdivision_;
-  std::map<DisplacementPacking, DisplacementLayout> layouts_;
-  std::vector<std::vector<Triangle>> triangles_;  ///< per level, filled on first use
-  /// Base triangles that are surface (all unless MOTN's mask hides some).
-  std::size_t SurfaceTriangleCount() const;
+  std::unique_ptr<KeyGroup> key_group_;           ///< the key group in use
   std::unique_ptr<Group> group_;                  ///< the decoded group in use
   // Scratch buffers reused across frames.
   std::vector<Eigen::Vector3f> posed_, normals_, origins_, directions_;

@@ -23,6 +23,14 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   if (!(settings.frame_rate > 0) || settings.frame_rate > 1000) {
     return InvalidArgumentError("frame rate must be in (0, 1000]");
   }
+  std::unique_ptr<MvidWriter> writer(new MvidWriter());
+  writer->settings_ = settings;
+  writer->container_ = std::make_unique<ContainerWriter>(std::move(sink));
+  MESHVID_RETURN_IF_ERROR(writer->StartKeyGroup(base, motion));
+  return writer;
+}
+
+Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& motion) {
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(motion, base.vertex_count()));
   if (!motion.surface_triangles.empty() &&
       motion.surface_triangles.size() != base.triangle_count()) {
@@ -31,20 +39,35 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
                                 " entries for a base mesh of " +
                                 std::to_string(base.triangle_count()) + " triangles");
   }
-  std::unique_ptr<MvidWriter> writer(new MvidWriter());
-  writer->settings_ = settings;
-  writer->motion_ = motion;
-  MESHVID_ASSIGN_OR_RETURN(EncodedBaseMesh base_coded, EncodeBaseMesh(base, settings.base));
+  if (key_groups_ > 0 && next_gof_ == first_gof_of_key_group_) {
+    return InvalidArgumentError("key group " + std::to_string(key_groups_ - 1) +
+                                " has no group of frames yet");
+  }
+  MESHVID_ASSIGN_OR_RETURN(EncodedBaseMesh base_coded, EncodeBaseMesh(base, settings_.base));
   if (base_coded.decoded.vertex_count() != base.vertex_count()) {
     return InternalError("the base mesh coder changed the vertex count");
   }
-  writer->decoded_base_ = std::move(base_coded.decoded);
-  MESHVID_ASSIGN_OR_RETURN(writer->subdivision_,
-                           RegularSubdivision::Create(writer->decoded_base_, settings.levels));
-  writer->layout_ = DisplacementLayout::ForSubdivision(writer->subdivision_, settings.packing);
+  MESHVID_ASSIGN_OR_RETURN(RegularSubdivision subdivision,
+                           RegularSubdivision::Create(base_coded.decoded, settings_.levels));
   MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes,
-                           EncodeMotionModel(motion, settings.motion));
+                           EncodeMotionModel(motion, settings_.motion));
+  decoded_base_ = std::move(base_coded.decoded);
+  subdivision_ = std::move(subdivision);
+  layout_ = DisplacementLayout::ForSubdivision(subdivision_, settings_.packing);
+  motion_ = motion;
+  if (key_groups_ == 0) MESHVID_RETURN_IF_ERROR(BeginContainer());
+  MESHVID_RETURN_IF_ERROR(container_->WriteBase(base_coded.bytes));
+  MESHVID_RETURN_IF_ERROR(container_->WriteMotion(motion_bytes));
+  stats_.base_bytes += base_coded.bytes.size();
+  stats_.motion_bytes += motion_bytes.size();
+  stats_.total_bytes = container_->bytes_written();
+  first_gof_of_key_group_ = next_gof_;
+  ++key_groups_;
+  return Status::Ok();
+}
 
+Status MvidWriter::BeginContainer() {
+  const MvidWriterSettings& settings = settings_;
   ContainerHeader header;
   // Frame rates are stored as a fraction; 1/1001 multiples (29.97) survive exactly.
   header.frame_rate_denominator = 1001;
@@ -53,19 +76,12 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   header.frame_count = settings.frame_count;
   header.gof_size = static_cast<std::uint32_t>(settings.gof_size);
   header.level_count = static_cast<std::uint32_t>(settings.levels);
+  // The picture size of key group 0 (spec/mvid-codec.md: each key group has its own).
   header.streams.push_back({std::string(VideoCodecTag(settings.codec)),
-                            static_cast<std::uint32_t>(writer->layout_.width()),
-                            static_cast<std::uint32_t>(writer->layout_.height()), 10,
-                            "displacement"});
+                            static_cast<std::uint32_t>(layout_.width()),
+                            static_cast<std::uint32_t>(layout_.height()), 10, "displacement"});
   header.metadata_json = settings.metadata_json;
-  writer->container_ = std::make_unique<ContainerWriter>(std::move(sink));
-  MESHVID_RETURN_IF_ERROR(writer->container_->Begin(header));
-  MESHVID_RETURN_IF_ERROR(writer->container_->WriteBase(base_coded.bytes));
-  MESHVID_RETURN_IF_ERROR(writer->container_->WriteMotion(motion_bytes));
-  writer->stats_.base_bytes = base_coded.bytes.size();
-  writer->stats_.motion_bytes = motion_bytes.size();
-  writer->stats_.total_bytes = writer->container_->bytes_written();
-  return writer;
+  return container_->Begin(header);
 }
 
 std::vector<std::vector<RigidTransform>> MvidWriter::DequantizeTransforms(

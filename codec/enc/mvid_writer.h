@@ -38,16 +38,17 @@ struct MvidWriterSettings {
 
 /// Bytes written per stream so far.
 struct MvidWriteStats {
-  std::uint64_t base_bytes = 0;
-  std::uint64_t motion_bytes = 0;     ///< MOTN: segments and blend weights
+  std::uint64_t base_bytes = 0;       ///< BASE, summed over key groups
+  std::uint64_t motion_bytes = 0;     ///< MOTN: segments and blend weights, summed
   std::uint64_t transform_bytes = 0;  ///< group side information: transforms and ranges
   std::uint64_t video_bytes = 0;      ///< displacement video packets
   std::uint64_t total_bytes = 0;      ///< everything, container overhead included
   std::uint32_t frames = 0;
 };
 
-/// Writes a .mvid: Create() codes the base mesh and motion model, then WriteGroup() once per
-/// group of frames, then Finish(). Everything the caller computes downstream of the base mesh
+/// Writes a .mvid: Create() codes the first key group's base mesh and motion model, then
+/// WriteGroup() once per group of frames; StartKeyGroup() begins the next key group (a new base
+/// mesh and motion); then Finish(). Everything the caller computes downstream of the base mesh
 /// and transforms should use decoded_base() and DequantizeTransforms() (closed loop).
 class MvidWriter {
  public:
@@ -57,9 +58,17 @@ class MvidWriter {
                                                       const MotionModel& motion,
                                                       const MvidWriterSettings& settings);
 
-  /// The base mesh a decoder reconstructs (Draco-quantised positions, same order).
+  /// Starts the next key group: codes `base` and `motion` (one blend per base vertex); the
+  /// groups written after it use them. The current key group must hold a group already.
+  Status StartKeyGroup(const TriangleMesh& base, const MotionModel& motion);
+  /// Key groups started so far.
+  int key_group_count() const { return key_groups_; }
+
+  /// The current key group's base mesh as a decoder reconstructs it (Draco-quantised
+  /// positions, same order).
   const TriangleMesh& decoded_base() const { return decoded_base_; }
-  /// The displacement lattice; displacement fields hold samples() in its order.
+  /// The current key group's displacement lattice; displacement fields hold samples() in its
+  /// order.
   const RegularSubdivision& subdivision() const { return subdivision_; }
   const MvidWriterSettings& settings() const { return settings_; }
   /// The transforms a decoder will use for these, after quantisation.
@@ -76,6 +85,8 @@ class MvidWriter {
 
  private:
   MvidWriter() = default;
+  /// Writes the preamble and HEAD (the stream's picture size is the first key group's).
+  Status BeginContainer();
   MvidWriterSettings settings_;
   std::unique_ptr<ContainerWriter> container_;
   TriangleMesh decoded_base_;
@@ -85,6 +96,8 @@ class MvidWriter {
   MvidWriteStats stats_;
   std::uint32_t next_frame_ = 0;
   std::uint32_t next_gof_ = 0;
+  std::uint32_t first_gof_of_key_group_ = 0;
+  int key_groups_ = 0;
 };
 
 }  // namespace meshvid

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "codec/common/compression.h"
@@ -123,10 +124,20 @@ StatusOr<std::vector<std::vector<RigidTransform>>> DecodeTransforms(
                         std::to_string(stored_segments) + " segments, expected " +
                         std::to_string(frame_count) + " x " + std::to_string(segment_count));
   }
+  // The counts come from the file: check them against what the coded bytes can expand to
+  // before anything is allocated for them (the product of two u32 fits in 64 bits).
+  const std::span<const std::uint8_t> coded = payload.subspan(reader.position());
+  const std::uint64_t transforms = std::uint64_t{frame_count} * segment_count;
+  if (transforms > std::numeric_limits<std::size_t>::max() / kTransformBytes ||
+      !ZstdCanExpandTo(coded.size(), transforms * kTransformBytes)) {
+    return reader.Error(std::to_string(frame_count) + " frames x " +
+                        std::to_string(segment_count) + " segments need more transform bytes "
+                        "than " + std::to_string(coded.size()) + " coded bytes can hold");
+  }
   MESHVID_ASSIGN_OR_RETURN(
       const std::vector<std::uint8_t> body,
-      DecompressBlock(payload.subspan(reader.position()),
-                      std::size_t{frame_count} * segment_count * kTransformBytes, "transforms"));
+      DecompressBlock(coded, static_cast<std::size_t>(transforms * kTransformBytes),
+                      "transforms"));
   ByteReader values(body, "transforms");
   std::vector<std::vector<RigidTransform>> frames(frame_count);
   // Each frame is coded as the difference from the previous one (the first from zero).

@@ -15,6 +15,7 @@
 #include "tools/bench/bench_runner.h"
 #include "tools/bench/child_process.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/capture.h"
 
@@ -245,7 +246,7 @@ int RunDracoDecodeCommand(const std::string& folder, const std::string& json, bo
                               {"seconds", summary->seconds},
                               {"frames_per_second", fps},
                               {"vertices", summary->vertices}};
-    const Status written = WriteFileAtomically(json, j.dump(2) + "\n");
+    const Status written = WriteFileAtomically(json, DumpJson(j, 2) + "\n");
     if (!written.ok()) return ReportError(written);
   }
   if (!quiet) {

@@ -1,15 +1,20 @@
 // `meshvid decode`: a .mvid to one mesh file per frame, at a chosen level; or, with
 // --no-write, every frame decoded and timed without writing (decoder speed).
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "codec/dec/mvid_decoder.h"
+#include "format/container_reader.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
 #include "tools/io/mesh_io.h"
@@ -29,18 +34,43 @@ struct DecodeArguments {
 };
 
 /// Writes the timing of a decode as JSON (for meshvid bench and scripts).
-Status WriteDecodeJson(const DecodeArguments& args, int level, int frames, double open_seconds,
-                       double seconds, const MvidInfo& info) {
+Status WriteDecodeJson(const DecodeArguments& args, int level, std::uint64_t frames,
+                       double open_seconds, double seconds, const MvidInfo& info) {
   const nlohmann::json j = {{"file", args.file},
                             {"level", level},
                             {"frames", frames},
                             {"written", !args.no_write},
                             {"open_seconds", open_seconds},
                             {"seconds", seconds},
-                            {"frames_per_second", seconds > 0 ? frames / seconds : 0.0},
+                            {"frames_per_second", seconds > 0 ? double(frames) / seconds : 0.0},
                             {"vertices", info.vertices_per_level[level]},
                             {"triangles", info.triangles_per_level[level]}};
-  return WriteFileAtomically(args.json, j.dump(2) + "\n");
+  return WriteFileAtomically(args.json, DumpJson(j, 2) + "\n");
+}
+
+/// Checks the frames the decoder can read against those the file's header promises (0:
+/// unknown): an error if there are none, a warning on stderr if they differ.
+Status CheckReadableFrames(const std::string& file, std::uint32_t readable) {
+  StatusOr<ContainerReader> reader = ContainerReader::OpenFile(file);
+  const std::uint32_t promised = reader.ok() ? reader->header().frame_count : 0;
+  const std::string promise =
+      promised > 0 ? "the header promises " + std::to_string(promised) + " frames" : "";
+  if (readable == 0) {
+    return CorruptError(file + ": no frame is readable (" +
+                        (promised > 0 ? promise + "; the" : "the") +
+                        " file is cut or damaged in its first group of frames)");
+  }
+  if (promised > 0 && readable < promised) {
+    std::fprintf(stderr,
+                 "meshvid: warning: %s: only %u of the %u frames the header promises are "
+                 "readable (the file is cut or damaged); decoding frames 0..%u at most\n",
+                 file.c_str(), readable, promised, readable - 1);
+  } else if (promised > 0 && readable > promised) {
+    std::fprintf(stderr,
+                 "meshvid: warning: %s: its groups hold %u frames, %s (the file is damaged)\n",
+                 file.c_str(), readable, promise.c_str());
+  }
+  return Status::Ok();
 }
 
 int RunDecode(const DecodeArguments& args) {
@@ -67,12 +97,17 @@ int RunDecode(const DecodeArguments& args) {
                                             std::to_string(info.levels) + ", not " +
                                             std::to_string(level)));
   }
-  int first = 0, end = static_cast<int>(info.frame_count);
+  const Status frames_checked = CheckReadableFrames(args.file, info.frame_count);
+  if (!frames_checked.ok()) return ReportError(frames_checked);
+  // Frame numbers are u32; --frames (int) can address the first 2^31 - 1 of them.
+  std::uint32_t first = 0, end = info.frame_count;
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, end);
+    const int addressable = static_cast<int>(
+        std::min<std::uint32_t>(end, std::numeric_limits<int>::max()));
+    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, addressable);
     if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
-    first = range->first;
-    end = range->second;
+    first = static_cast<std::uint32_t>(range->first);
+    end = static_cast<std::uint32_t>(range->second);
   }
   MeshWriteOptions write_options;
   write_options.ply_encoding = args.ascii ? PlyEncoding::kAscii : PlyEncoding::kBinaryLittleEndian;
@@ -80,7 +115,7 @@ int RunDecode(const DecodeArguments& args) {
   const ProgressCallback progress = bar.Callback();
   const Clock::time_point start = Clock::now();
   const double open_seconds = std::chrono::duration<double>(start - open_start).count();
-  for (int frame = first; frame < end; ++frame) {
+  for (std::uint32_t frame = first; frame < end; ++frame) {
     StatusOr<TriangleMesh> mesh = (*decoder)->DecodeFrame(frame, level);
     if (!mesh.ok()) return ReportError(mesh.status());
     if (!args.no_write) {
@@ -88,7 +123,8 @@ int RunDecode(const DecodeArguments& args) {
       const Status written = WriteMesh(path, *mesh, write_options);
       if (!written.ok()) return ReportError(written);
     }
-    ReportProgress(progress, "decoding", frame - first + 1, end - first);
+    ReportProgress(progress, "decoding", static_cast<long>(frame - first) + 1,
+                   static_cast<long>(end - first));
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   bar.Finish();
@@ -98,14 +134,14 @@ int RunDecode(const DecodeArguments& args) {
   }
   if (!args.quiet && args.no_write) {
     std::fprintf(stderr,
-                 "Decoded frames %d..%d of %s at level %d (%zu vertices, %zu triangles "
+                 "Decoded frames %u..%u of %s at level %d (%zu vertices, %zu triangles "
                  "each) in %.3f s: %.1f frames/s, nothing written\n",
                  first, end - 1, args.file.c_str(), level, info.vertices_per_level[level],
                  info.triangles_per_level[level], seconds,
                  seconds > 0 ? (end - first) / seconds : 0.0);
   } else if (!args.quiet) {
     std::fprintf(stderr,
-                 "Decoded frames %d..%d of %s at level %d (%zu vertices, %zu triangles "
+                 "Decoded frames %u..%u of %s at level %d (%zu vertices, %zu triangles "
                  "each) to %s\n",
                  first, end - 1, args.file.c_str(), level, info.vertices_per_level[level],
                  info.triangles_per_level[level], args.output.c_str());

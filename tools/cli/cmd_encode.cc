@@ -10,6 +10,7 @@
 #include "codec/enc/encoder.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/capture.h"
 #include "tools/io/file_pattern.h"
@@ -139,7 +140,7 @@ int RunEncode(EncodeArguments args) {
   nlohmann::json metadata;
   metadata["encoder"] = "meshvid encode";
   metadata["capture"] = std::filesystem::path(args.capture).filename().string();
-  args.options.metadata_json = metadata.dump();
+  args.options.metadata_json = DumpJson(metadata);  // the file name may not be UTF-8
 
   // Written to a temporary file first: a failed encode never leaves a truncated .mvid behind,
   // and a bad output path fails before any work.
@@ -159,7 +160,7 @@ int RunEncode(EncodeArguments args) {
   if (!args.quiet) PrintSummary(*summary, args, seconds);
   if (!args.summary_json.empty()) {
     const Status written = WriteFileAtomically(
-        args.summary_json, SummaryJson(*summary, args, seconds).dump(2) + "\n");
+        args.summary_json, DumpJson(SummaryJson(*summary, args, seconds), 2) + "\n");
     if (!written.ok()) return ReportError(written.WithContext("--summary-json"));
   }
   return 0;

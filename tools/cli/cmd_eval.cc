@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/eval/eval_source.h"
 #include "tools/eval/evaluation.h"
@@ -53,6 +54,9 @@ int RunEval(const EvalArguments& args) {
   bar.Finish();
   if (!result.ok()) return ReportError(result.status());
   if (!args.json.empty()) {
+    // The descriptions name files, which may not be UTF-8 as the JSON writer needs.
+    result->ref_description = ToValidUtf8(result->ref_description);
+    result->test_description = ToValidUtf8(result->test_description);
     const Status written = WriteEvalJson(*result, args.json);
     if (!written.ok()) return ReportError(written);
   }

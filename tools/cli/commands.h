@@ -1,5 +1,6 @@
 // Subcommands of the `meshvid` executable. Each cmd_*.cc file adds one subcommand to the app;
-// its callback stores the process exit code in *exit_code (0 ok, 1 failure, 2 usage).
+// its callback stores the process exit code in *exit_code (0 ok, 1 failure, 2 usage). main()
+// exits 3 when an exception escapes a command (an internal error: tools/cli/internal_error.h).
 #ifndef MESHVID_TOOLS_CLI_COMMANDS_H_
 #define MESHVID_TOOLS_CLI_COMMANDS_H_
 

@@ -1,9 +1,19 @@
 // meshvid: codec and file format for captured dynamic 3D surfaces.
 #include <CLI/CLI.hpp>
 
-#include "tools/cli/commands.h"
+#include <cstdio>
+#include <string>
+#include <vector>
 
-int main(int argc, char** argv) {
+#include "tools/cli/commands.h"
+#include "tools/cli/internal_error.h"
+
+namespace {
+
+/// Exit code of a command line that names no known command (see commands.h).
+constexpr int kExitUsage = 2;
+
+int Run(int argc, char** argv) {
   CLI::App app{
       "meshvid: codec and file format for captured dynamic 3D surfaces.\n"
       "Turns a multi-view capture (K range meshes per frame) into one compact .mvid file and\n"
@@ -20,7 +30,26 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A first word that is no command: name it (CLI11 would only say one is required).
+    const std::vector<std::string> extras = app.remaining();
+    if (app.get_subcommands().empty() && !extras.empty() && !extras.front().starts_with('-')) {
+      std::string commands;
+      // Hidden commands (no group: run by meshvid bench) are not listed.
+      for (const CLI::App* command :
+           app.get_subcommands([](const CLI::App* c) { return !c->get_group().empty(); })) {
+        commands += (commands.empty() ? "" : ", ") + command->get_name();
+      }
+      std::fprintf(stderr, "meshvid: unknown command '%s' (commands: %s); see meshvid --help\n",
+                   extras.front().c_str(), commands.c_str());
+      return kExitUsage;
+    }
     return app.exit(e);
   }
   return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return meshvid::cli::RunCatchingInternalErrors([&] { return Run(argc, argv); });
 }

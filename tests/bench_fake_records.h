@@ -8,13 +8,18 @@
 #include <limits>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "tools/bench/bench_record.h"
 
 namespace meshvid::testing {
 
 /// The record "fake-3-arc": baseline bits 8..14 at 30..45 dB; HEVC q20..q80 at level 1
 /// with half the rate at the same PSNRs (BD-rate -50%), at level 0 with a PSNR range that
-/// does not overlap; FFV1 lossless at PSNR inf; one failed AV1 encode.
+/// does not overlap; FFV1 lossless at PSNR inf (100 dB as the mean of frames); one failed AV1
+/// encode. The PSNRs above are the means of frames; the PSNRs of the mean MSE are lower, by
+/// 1 dB for the baseline and 4 dB for meshvid (as if it had a few bad frames), so a BD-rate on
+/// them would differ.
 inline BenchRecord FakeRecord() {
   BenchRecord r;
   r.sequence = "fake";
@@ -48,7 +53,9 @@ inline BenchRecord FakeRecord() {
     p.frames = 10;
     p.bytes_per_frame = 100000.0 * (1 << i);
     p.mbit_per_s = p.bytes_per_frame * 8 * 25 / 1e6;
-    p.d1_psnr = psnrs[i];
+    p.d1_psnr_mean_of_frames = psnrs[i];
+    p.d1_psnr = psnrs[i] - 1;
+    p.d2_psnr_mean_of_frames = psnrs[i] + 4;
     p.d2_psnr = psnrs[i] + 3;
     p.accuracy_rms = 0.002;
     p.completeness_rms = 0.004;
@@ -64,6 +71,7 @@ inline BenchRecord FakeRecord() {
     m.codec = "hevc";
     m.quality = 20 + 20 * i;
     m.level = 1;
+    m.d1_psnr = psnrs[i] - 4;
     m.bytes_per_frame = p.bytes_per_frame / 2;
     m.mbit_per_s = p.mbit_per_s / 2;
     m.coverage = 0.95;
@@ -76,7 +84,8 @@ inline BenchRecord FakeRecord() {
         "meshvid decode hevc-q" + std::to_string(m.quality) + ".mvid --level 1 --no-write -q"};
     r.points.push_back(m);
     m.level = 0;
-    m.d1_psnr = 20 + i;  // below every baseline point: no overlap
+    m.d1_psnr_mean_of_frames = 20 + i;  // below every baseline point: no overlap
+    m.d1_psnr = 16 + i;
     m.decode_fps = 2000;
     r.points.push_back(m);
   }
@@ -89,7 +98,9 @@ inline BenchRecord FakeRecord() {
   lossless.bytes_per_frame = 900000;
   lossless.mbit_per_s = 180;
   lossless.d1_psnr = std::numeric_limits<double>::infinity();
+  lossless.d1_psnr_mean_of_frames = 100;  // every frame exact: each capped at 100 dB
   lossless.d2_psnr = 70;
+  lossless.d2_psnr_mean_of_frames = 71;
   lossless.coverage = 0.96;
   r.points.push_back(lossless);
   BenchEncode failed;
@@ -101,6 +112,24 @@ inline BenchRecord FakeRecord() {
   r.encodes.push_back(failed);
   ComputeBdRates(r);
   return r;
+}
+
+/// FakeRecord's JSON as meshvid bench wrote it before it recorded the mean of per-frame PSNRs:
+/// no "d1_psnr_mean_of_frames"/"d2_psnr_mean_of_frames" in the points, no "psnr" in the
+/// BD-rates (then computed on the PSNR of the mean MSE).
+inline std::string OlderFakeRecordJson() {
+  BenchRecord r = FakeRecord();
+  for (BenchPoint& p : r.points) {
+    p.d1_psnr_mean_of_frames = p.d2_psnr_mean_of_frames = std::nan("");
+  }
+  ComputeBdRates(r);  // on the PSNR of the mean MSE, as the older bench did
+  nlohmann::json j = nlohmann::json::parse(BenchRecordToJson(r));
+  for (nlohmann::json& p : j["points"]) {
+    p.erase("d1_psnr_mean_of_frames");
+    p.erase("d2_psnr_mean_of_frames");
+  }
+  for (nlohmann::json& b : j["bd_rates"]) b.erase("psnr");
+  return j.dump(2) + "\n";
 }
 
 }  // namespace meshvid::testing

@@ -12,6 +12,15 @@
 namespace meshvid {
 namespace {
 
+/// Equal, or both NaN (a figure the point does not hold).
+void ExpectSameNumber(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) {
+    EXPECT_TRUE(std::isnan(a) && std::isnan(b)) << a << " vs " << b;
+  } else {
+    EXPECT_EQ(a, b);
+  }
+}
+
 void ExpectSamePoint(const BenchPoint& a, const BenchPoint& b) {
   EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.codec, b.codec);
@@ -24,6 +33,8 @@ void ExpectSamePoint(const BenchPoint& a, const BenchPoint& b) {
   EXPECT_DOUBLE_EQ(a.mbit_per_s, b.mbit_per_s);
   EXPECT_EQ(a.d1_psnr, b.d1_psnr);  // also +inf
   EXPECT_DOUBLE_EQ(a.d2_psnr, b.d2_psnr);
+  ExpectSameNumber(a.d1_psnr_mean_of_frames, b.d1_psnr_mean_of_frames);
+  ExpectSameNumber(a.d2_psnr_mean_of_frames, b.d2_psnr_mean_of_frames);
   EXPECT_DOUBLE_EQ(a.accuracy_rms, b.accuracy_rms);
   EXPECT_DOUBLE_EQ(a.completeness_rms, b.completeness_rms);
   EXPECT_DOUBLE_EQ(a.coverage, b.coverage);
@@ -38,6 +49,9 @@ TEST(BenchRecordTest, JsonRoundTripKeepsEverything) {
   const BenchRecord record = testing::FakeRecord();
   const std::string text = BenchRecordToJson(record);
   EXPECT_NE(text.find("\"d1_psnr\": \"inf\""), std::string::npos);
+  EXPECT_NE(text.find("\"d1_psnr_mean_of_frames\": 100.0"), std::string::npos);
+  EXPECT_NE(text.find("\"d2_psnr_mean_of_frames\": 71.0"), std::string::npos);
+  EXPECT_NE(text.find("\"psnr\": \"d1_psnr_mean_of_frames\""), std::string::npos);
   auto parsed = ParseBenchRecord(text, "fake.json");
   ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
   EXPECT_EQ(parsed->sequence, "fake");
@@ -83,6 +97,79 @@ TEST(BenchRecordTest, BdRatesPerCodecAndLevelAgainstTheBaseline) {
   EXPECT_NEAR(level1.delta, -0.5, 1e-9);
   EXPECT_DOUBLE_EQ(level1.psnr_low, 30);
   EXPECT_DOUBLE_EQ(level1.psnr_high, 45);
+}
+
+TEST(BenchRecordTest, BdRateIsOnTheMeanOfFramesPsnr) {
+  const BenchRecord record = testing::FakeRecord();
+  EXPECT_EQ(RecordPsnrKind(record), kPsnrMeanOfFrames);
+  const BdRateEntry& level1 = record.bd_rates[1];
+  EXPECT_EQ(level1.psnr, kPsnrMeanOfFrames);
+  // On the mean of frames meshvid needs half the bytes at equal PSNR (-50%). On the PSNR of
+  // the mean MSE its curve sits 3 dB lower relative to the baseline's (4 dB under its mean of
+  // frames against the baseline's 1 dB), so with rate doubling every 5 dB it would read
+  // 2^-0.4 - 1 = -24.2%: the figure used must be the mean of frames.
+  ASSERT_TRUE(level1.ok);
+  EXPECT_NEAR(level1.delta, -0.5, 1e-9);
+  BenchRecord on_mean_mse = record;
+  for (BenchPoint& p : on_mean_mse.points) p.d1_psnr_mean_of_frames = std::nan("");
+  ComputeBdRates(on_mean_mse);
+  ASSERT_TRUE(on_mean_mse.bd_rates[1].ok);
+  EXPECT_EQ(on_mean_mse.bd_rates[1].psnr, kPsnrOfMeanMse);
+  EXPECT_NEAR(on_mean_mse.bd_rates[1].delta, std::pow(2.0, -0.4) - 1, 1e-9);
+  // One older point is enough to put the whole record on the PSNR of the mean MSE.
+  BenchRecord mixed = record;
+  mixed.points[0].d1_psnr_mean_of_frames = std::nan("");
+  EXPECT_EQ(RecordPsnrKind(mixed), kPsnrOfMeanMse);
+  // A failed point does not count.
+  mixed.points[0].ok = false;
+  EXPECT_EQ(RecordPsnrKind(mixed), kPsnrMeanOfFrames);
+}
+
+TEST(BenchRecordTest, OlderRecordsWithoutTheMeanOfFramesStillParse) {
+  const auto parsed = ParseBenchRecord(testing::OlderFakeRecordJson(), "older.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  ASSERT_EQ(parsed->points.size(), testing::FakeRecord().points.size());
+  for (const BenchPoint& p : parsed->points) {
+    EXPECT_FALSE(HasMeanOfFramesPsnr(p));
+    EXPECT_TRUE(std::isnan(p.d2_psnr_mean_of_frames));
+  }
+  EXPECT_DOUBLE_EQ(parsed->points[0].d1_psnr, 29);  // the old figure is kept
+  EXPECT_EQ(RecordPsnrKind(*parsed), kPsnrOfMeanMse);
+  EXPECT_DOUBLE_EQ(D1Psnr(parsed->points[0], RecordPsnrKind(*parsed)), 29);
+  // Stored BD-rates without "psnr" were computed on the PSNR of the mean MSE, and say so.
+  ASSERT_EQ(parsed->bd_rates.size(), 2u);
+  EXPECT_EQ(parsed->bd_rates[1].psnr, kPsnrOfMeanMse);
+  EXPECT_NEAR(parsed->bd_rates[1].delta, std::pow(2.0, -0.4) - 1, 1e-9);
+  // Recomputing falls back to the same figure and gives the same BD-rates.
+  BenchRecord again = *parsed;
+  ComputeBdRates(again);
+  ASSERT_EQ(again.bd_rates.size(), 2u);
+  EXPECT_EQ(again.bd_rates[1].psnr, kPsnrOfMeanMse);
+  EXPECT_DOUBLE_EQ(again.bd_rates[1].delta, parsed->bd_rates[1].delta);
+  // Written again, the missing figure is null, and reads back as missing.
+  const std::string text = BenchRecordToJson(*parsed);
+  EXPECT_NE(text.find("\"d1_psnr_mean_of_frames\": null"), std::string::npos);
+  const auto reread = ParseBenchRecord(text, "older.json");
+  ASSERT_TRUE(reread.ok());
+  EXPECT_FALSE(HasMeanOfFramesPsnr(reread->points[0]));
+}
+
+TEST(BenchRecordTest, CommittedRecordsParseAndReproduceTheirBdRates) {
+  const std::string folder = std::string(MESHVID_GOLDEN_DIR) + "/../../bench/results";
+  if (!std::filesystem::is_directory(folder)) GTEST_SKIP() << "no " << folder;
+  const auto records = ReadBenchRecords(folder);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  for (const BenchRecord& record : *records) {
+    SCOPED_TRACE(BenchRecordName(record));
+    BenchRecord again = record;
+    ComputeBdRates(again);
+    ASSERT_EQ(again.bd_rates.size(), record.bd_rates.size());
+    for (std::size_t i = 0; i < record.bd_rates.size(); ++i) {
+      EXPECT_EQ(again.bd_rates[i].psnr, record.bd_rates[i].psnr);
+      EXPECT_EQ(again.bd_rates[i].ok, record.bd_rates[i].ok);
+      EXPECT_NEAR(again.bd_rates[i].delta, record.bd_rates[i].delta, 1e-9);
+    }
+  }
 }
 
 TEST(BenchRecordTest, FilesAreWrittenAtomicallyAndOtherJsonIsSkipped) {

@@ -45,17 +45,31 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   EXPECT_TRUE(Contains(md, "(peak memory floor: the bench process's own 21 MB)"));
   EXPECT_TRUE(Contains(md, "**Simulation failed**, nothing else ran: exit code 1: no such file"));
   // The BD-rate table: a value with its interval, and the reason where there is none.
-  EXPECT_TRUE(Contains(md, "| HEVC | 1 | **-50.0%** | 30.00 - 45.00 dB |  |"));
-  EXPECT_TRUE(Contains(md, "| HEVC | 0 | n/a |  | the PSNR ranges do not overlap"));
-  // Point rows: the baseline first, PSNR inf printed as such.
-  EXPECT_TRUE(Contains(md,
-                       "| baseline | DRACO | 8 bits | - | 100000 | 20 | 30.00 | 33.00 | 2 | 4 | "
-                       "90.0% | 0.4 | 30 | 250 | 250 |"))
+  // The BD-rate table names the D1 PSNR it is computed on.
+  EXPECT_TRUE(Contains(md, "| codec | level | BD-rate | D1 PSNR | over D1 PSNR | note |"));
+  EXPECT_TRUE(Contains(md, "| HEVC | 1 | **-50.0%** | mean of frames | 30.00 - 45.00 dB |  |"))
       << md;
-  EXPECT_TRUE(Contains(md, "| meshvid | HEVC | q20 | 1 | 50000 | 10 | 30.00 |"));
-  EXPECT_TRUE(Contains(md, "| meshvid | FFV1 | q100 | 1 | 900000 | 180 | inf | 70.00 |"));
+  EXPECT_TRUE(
+      Contains(md, "| HEVC | 0 | n/a | mean of frames |  | the PSNR ranges do not overlap"));
+  // Point rows: the baseline first, both averages of D1 and D2, PSNR inf printed as such.
+  EXPECT_TRUE(Contains(md,
+                       "| Mbit/s | D1 PSNR, mean of frames | D1 PSNR, mean MSE | "
+                       "D2 PSNR, mean of frames | D2 PSNR, mean MSE |"));
+  EXPECT_TRUE(Contains(md,
+                       "| baseline | DRACO | 8 bits | - | 100000 | 20 | 30.00 | 29.00 | 34.00 | "
+                       "33.00 | 2 | 4 | 90.0% | 0.4 | 30 | 250 | 250 |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| meshvid | HEVC | q20 | 1 | 50000 | 10 | 30.00 | 26.00 |"));
+  EXPECT_TRUE(
+      Contains(md, "| meshvid | FFV1 | q100 | 1 | 900000 | 180 | 100.00 | inf | 71.00 | 70.00 |"));
   EXPECT_LT(md.find("| baseline | DRACO | 8 bits"), md.find("| meshvid | HEVC | q20 | 1"));
-  EXPECT_TRUE(Contains(md, "![D1 PSNR against rate, fake-3-arc](results/fake-3-arc-rd.png)"));
+  EXPECT_TRUE(Contains(md, "![D1 PSNR, mean of frames, against rate, fake-3-arc]"
+                           "(results/fake-3-arc-rd.png)"));
+  // How both averages are measured, and which one BD-rate uses.
+  EXPECT_TRUE(Contains(md, "**mean of frames**, the mean of the per-frame PSNRs"));
+  EXPECT_TRUE(Contains(md, "**mean MSE**, the PSNR of the mean MSE over frames"));
+  EXPECT_TRUE(Contains(md, "against the baseline, on D1 PSNR, mean of frames"));
+  EXPECT_FALSE(Contains(md, "This record predates"));
   EXPECT_TRUE(Contains(md, "- av1 q40: encode: exit code 1: out of cheese"));
   EXPECT_TRUE(
       Contains(md, "meshvid simulate scene:fake -o work/fake-3-arc/capture --views 3 -q\n"));
@@ -65,6 +79,25 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   EXPECT_TRUE(Contains(md, "meshvid encode c -o av1-q40.mvid --codec av1 -q\n"));
   // Deterministic.
   EXPECT_EQ(md, GenerateResultsMarkdown(records, FakeOptions()));
+}
+
+TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
+  const auto older = ParseBenchRecord(testing::OlderFakeRecordJson(), "fake-3-arc.json");
+  ASSERT_TRUE(older.ok()) << older.status().ToString();
+  const std::string md = GenerateResultsMarkdown({*older}, FakeOptions());
+  EXPECT_TRUE(
+      Contains(md, "| HEVC | 1 | **-24.2%** | mean MSE (older record) | 29.00 - 41.00 dB |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| baseline | DRACO | 8 bits | - | 100000 | 20 | n/a | 29.00 | n/a | "
+                           "33.00 |"));
+  EXPECT_TRUE(Contains(md, "This record predates the mean of per-frame PSNRs"));
+  EXPECT_TRUE(Contains(md, "![D1 PSNR, mean MSE (older record), against rate, fake-3-arc]"));
+  // Its plot is on the same figure as its BD-rates.
+  const std::string script = RdPlotScript(*older, "fake-3-arc-rd.png");
+  EXPECT_TRUE(Contains(script, "set ylabel \"D1 PSNR, of the mean MSE (dB)\""));
+  EXPECT_TRUE(Contains(script, "$s0 << EOD\n20 29.0000\n40 34.0000\n")) << script;
+  // The lossless point has PSNR inf there: not drawable, so no FFV1 curve.
+  EXPECT_FALSE(Contains(script, "FFV1"));
 }
 
 TEST(BenchReportTest, MissingPlotsAreExplained) {
@@ -83,9 +116,11 @@ TEST(BenchReportTest, PlotScriptHasEveryCurve) {
   EXPECT_TRUE(Contains(script, "title \"baseline: per-frame fusion + Draco\""));
   EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L1\""));
   EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L0\""));
-  // The lossless point has PSNR inf: not drawable, so no FFV1 curve.
-  EXPECT_FALSE(Contains(script, "FFV1"));
-  // The baseline's data: Mbit/s and D1 PSNR, sorted by rate.
+  EXPECT_TRUE(Contains(script, "set ylabel \"D1 PSNR, mean of frames (dB)\""));
+  // The lossless point: exact frames, capped at 100 dB in the mean of frames, so drawable.
+  EXPECT_TRUE(Contains(script, "title \"meshvid FFV1 L1 (lossless)\""));
+  EXPECT_TRUE(Contains(script, "180 100.0000\n"));
+  // The baseline's data: Mbit/s and D1 PSNR (mean of frames), sorted by rate.
   EXPECT_TRUE(
       Contains(script, "$s0 << EOD\n20 30.0000\n40 35.0000\n80 40.0000\n160 45.0000\nEOD\n"))
       << script;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -70,7 +71,9 @@ case $cmd in
       *.mvid) psnr=$((30 + $(cat "$test") / 10 + level)) ;;
       *) psnr=$(echo "$test" | sed 's|.*/b\([0-9]*\)/.*|\1|'); psnr=$((psnr * 3)) ;;
     esac
-    echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\", \"accuracy_rms\": 0.001,
+    echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\",
+           \"d1_psnr_mean_of_frames\": $((psnr + 2)), \"d2_psnr_mean_of_frames\": 100,
+           \"accuracy_rms\": 0.001,
            \"completeness_rms\": 0.002, \"hausdorff\": 0.01, \"coverage\": 0.9},
            \"frames\": [{}, {}]}" > "$json" ;;
   *) echo "unknown command $cmd" >&2; exit 2 ;;
@@ -125,6 +128,8 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_DOUBLE_EQ(b10->bytes_per_frame, 5000);
   EXPECT_DOUBLE_EQ(b10->mbit_per_s, 5000 * 8 * 50 / 1e6);
   EXPECT_DOUBLE_EQ(b10->d1_psnr, 30);
+  EXPECT_DOUBLE_EQ(b10->d1_psnr_mean_of_frames, 32);
+  EXPECT_DOUBLE_EQ(b10->d2_psnr_mean_of_frames, 100);
   EXPECT_DOUBLE_EQ(b10->decode_fps, 20);  // from bench-draco-decode
   EXPECT_GT(b10->decode_peak_mb, 0);
   ASSERT_EQ(b10->commands.size(), 3u);  // baseline, Draco decoding, eval
@@ -144,6 +149,7 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_FALSE(failed->ok);
   EXPECT_NE(failed->error.find("encoder exploded"), std::string::npos) << failed->error;
   ASSERT_EQ(r.bd_rates.size(), 2u);  // hevc levels 0 and 1 (ffv1: one point)
+  EXPECT_EQ(r.bd_rates[0].psnr, kPsnrMeanOfFrames);
   bool logged_failure = false;
   for (const std::string& line : bench.log)
     logged_failure |= line.find("q66 FAILED") != std::string::npos;
@@ -169,6 +175,33 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   records = RunBench(bench.options, bench.events);
   ASSERT_TRUE(records.ok());
   EXPECT_GT(bench.Calls().size(), after.size() + 10);
+}
+
+TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {
+  FakeBench bench;
+  ASSERT_TRUE(RunBench(bench.options, bench.events).ok());
+  // The record as an older bench wrote it: no mean of per-frame PSNRs.
+  const std::string path = bench.options.results_dir + "/fake-3-arc.json";
+  auto older = ReadBenchRecord(path);
+  ASSERT_TRUE(older.ok());
+  for (BenchPoint& p : older->points) p.d1_psnr_mean_of_frames = std::nan("");
+  ASSERT_TRUE(WriteBenchRecord(*older, path).ok());
+  const std::size_t calls = bench.Calls().size();
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  int evals = 0;
+  const std::vector<std::string> after = bench.Calls();
+  for (std::size_t i = calls; i < after.size(); ++i) evals += after[i].rfind("eval ", 0) == 0;
+  EXPECT_EQ(evals, 2 + 4 + 2);  // every point
+  for (const BenchPoint& p : (*records)[0].points) {
+    EXPECT_TRUE(HasMeanOfFramesPsnr(p)) << p.codec << p.quality;
+  }
+  EXPECT_EQ((*records)[0].bd_rates[0].psnr, kPsnrMeanOfFrames);
+  bool logged = false;
+  for (const std::string& line : bench.log)
+    logged |= line.find("8 points were recorded without the mean of per-frame PSNRs") !=
+              std::string::npos;
+  EXPECT_TRUE(logged);
 }
 
 TEST(BenchRunnerTest, StopsWhenProgressAsksAndKeepsWhatIsDone) {

@@ -52,7 +52,13 @@ TEST_F(EvalCliTest, WritesJsonForTwoObjSequences) {
     EXPECT_EQ(j["frames"][t]["coverage"], 1.0);  // 0.002 < 0.25% of 1.43
   }
   EXPECT_NEAR(j["mean"]["completeness_rms"].get<double>(), 0.002, 1e-6);
-  EXPECT_NE(run.out.find("mean"), std::string::npos) << run.out;
+  // Both averages of the PSNRs, in the JSON and labelled in the table.
+  EXPECT_TRUE(j["mean"]["d1_psnr"].is_number());
+  EXPECT_TRUE(j["mean"]["d1_psnr_mean_of_frames"].is_number());
+  EXPECT_TRUE(j["mean"]["d2_psnr_mean_of_frames"].is_number());
+  EXPECT_EQ(j["mean"]["d1_psnr_capped_frames"], 0);
+  EXPECT_NE(run.out.find("      mean MSE "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("mean of frames "), std::string::npos) << run.out;
 }
 
 TEST_F(EvalCliTest, FrameRangeSelectsFrames) {

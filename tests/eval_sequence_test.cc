@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <utility>
@@ -75,6 +76,90 @@ TEST(EvalSequenceTest, PerFrameResultsAndMean) {
   EXPECT_DOUBLE_EQ(result->mean.d2_psnr, PsnrFromMse(mean_d2, result->peak));
 }
 
+/// A frame measured with D1 and D2 MSE `mse` at peak p = 1/sqrt(3) (3 p^2 = 1, so a PSNR is
+/// -10 log10(MSE)).
+FrameMetrics FrameWithMse(int t, double mse) {
+  FrameMetrics m;
+  m.frame = t;
+  m.d1_mse = m.d2_mse = mse;
+  m.d1_psnr = m.d2_psnr = PsnrFromMse(mse, 1 / std::sqrt(3.0));
+  return m;
+}
+
+TEST(EvalSequenceTest, MeanOfFramesAndPsnrOfMeanMseDifferWhenFramesDo) {
+  // 30 frames whose last half diverged: 50 dB (MSE 1e-5) then 30 dB (MSE 1e-3).
+  std::vector<FrameMetrics> frames;
+  for (int t = 0; t < 30; ++t) frames.push_back(FrameWithMse(t, t < 15 ? 1e-5 : 1e-3));
+  EXPECT_NEAR(frames[0].d1_psnr, 50, 1e-9);
+  EXPECT_NEAR(frames[29].d1_psnr, 30, 1e-9);
+  const FrameMetrics mean = MeanFrameMetrics(frames, 1 / std::sqrt(3.0));
+  const PsnrMeanOfFrames of_frames = MeanOfFramePsnrs(frames);
+  // The mean of the PSNRs: (50 + 30) / 2 = 40 dB.
+  EXPECT_NEAR(of_frames.d1_psnr, 40, 1e-9);
+  EXPECT_NEAR(of_frames.d2_psnr, 40, 1e-9);
+  EXPECT_EQ(of_frames.d1_capped_frames, 0);
+  // The PSNR of the mean MSE, 5.05e-4: 32.97 dB, dominated by the bad half.
+  EXPECT_NEAR(mean.d1_psnr, -10 * std::log10(5.05e-4), 1e-9);
+  EXPECT_NEAR(mean.d1_psnr, 32.97, 0.01);
+  EXPECT_GT(of_frames.d1_psnr - mean.d1_psnr, 7);
+  // Equal frames: both averages agree.
+  const std::vector<FrameMetrics> steady(4, FrameWithMse(0, 1e-4));
+  EXPECT_NEAR(MeanOfFramePsnrs(steady).d1_psnr,
+              MeanFrameMetrics(steady, 1 / std::sqrt(3.0)).d1_psnr, 1e-9);
+  EXPECT_TRUE(std::isnan(MeanOfFramePsnrs({}).d1_psnr));
+}
+
+TEST(EvalSequenceTest, ExactFramesAreCappedInTheMeanOfFramesAndCounted) {
+  // One exact frame (PSNR inf) and one at 30 dB: the exact frame counts as 100 dB.
+  const std::vector<FrameMetrics> frames = {FrameWithMse(0, 0), FrameWithMse(1, 1e-3)};
+  EXPECT_TRUE(std::isinf(frames[0].d1_psnr));
+  const PsnrMeanOfFrames of_frames = MeanOfFramePsnrs(frames);
+  EXPECT_NEAR(of_frames.d1_psnr, (kFramePsnrCapDb + 30) / 2, 1e-9);
+  EXPECT_EQ(of_frames.d1_capped_frames, 1);
+  EXPECT_EQ(of_frames.d2_capped_frames, 1);
+  // A finite PSNR above the cap is capped too.
+  const PsnrMeanOfFrames high = MeanOfFramePsnrs({FrameWithMse(0, 1e-12)});  // 120 dB
+  EXPECT_DOUBLE_EQ(high.d1_psnr, kFramePsnrCapDb);
+  EXPECT_EQ(high.d1_capped_frames, 1);
+}
+
+TEST(EvalSequenceTest, OneBadFrameWeighsMoreInThePsnrOfTheMeanMse) {
+  // Frame 0 is 0.001 off, frame 1 is 0.1 off (100x the distance, 40 dB worse).
+  VectorSequence ref(
+      {testing::MakeGridPlane(1.0f, 6, 0.0f), testing::MakeGridPlane(1.0f, 6, 1.0f)});
+  VectorSequence test(
+      {testing::MakeGridPlane(1.0f, 6, 0.001f), testing::MakeGridPlane(1.0f, 6, 1.1f)});
+  const auto result = EvaluateSequences(ref, test, SmallOptions());
+  ASSERT_TRUE(result.ok()) << result.status().ToString();
+  const std::vector<FrameMetrics>& f = result->frames;
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_NEAR(f[0].d1_psnr - f[1].d1_psnr, 40, 0.5);
+  EXPECT_NEAR(result->mean_of_frames.d1_psnr, (f[0].d1_psnr + f[1].d1_psnr) / 2, 1e-9);
+  EXPECT_NEAR(result->mean_of_frames.d2_psnr, (f[0].d2_psnr + f[1].d2_psnr) / 2, 1e-9);
+  EXPECT_DOUBLE_EQ(result->mean.d1_psnr,
+                   PsnrFromMse((f[0].d1_mse + f[1].d1_mse) / 2, result->peak));
+  // The bad frame's MSE is 1e4 x the good one's: the mean MSE is about half of it (-3 dB from
+  // the bad frame), while the mean of frames lies halfway (+20 dB).
+  EXPECT_NEAR(result->mean.d1_psnr, f[1].d1_psnr + 3.0, 0.1);
+  EXPECT_GT(result->mean_of_frames.d1_psnr - result->mean.d1_psnr, 15);
+
+  const nlohmann::json j = nlohmann::json::parse(EvalResultToJson(*result));
+  EXPECT_NEAR(j["mean"]["d1_psnr"].get<double>(), result->mean.d1_psnr, 1e-9);
+  EXPECT_NEAR(j["mean"]["d1_psnr_mean_of_frames"].get<double>(), result->mean_of_frames.d1_psnr,
+              1e-9);
+  EXPECT_NEAR(j["mean"]["d2_psnr_mean_of_frames"].get<double>(), result->mean_of_frames.d2_psnr,
+              1e-9);
+  EXPECT_EQ(j["mean"]["d1_psnr_capped_frames"], 0);
+  const std::string table = FormatEvalTable(*result);
+  char row[64];
+  std::snprintf(row, sizeof(row), "mean of frames %8.2f %8.2f\n", result->mean_of_frames.d1_psnr,
+                result->mean_of_frames.d2_psnr);
+  EXPECT_NE(table.find(row), std::string::npos) << table;
+  std::snprintf(row, sizeof(row), "      mean MSE %8.2f %8.2f ", result->mean.d1_psnr,
+                result->mean.d2_psnr);
+  EXPECT_NE(table.find(row), std::string::npos) << table;
+}
+
 TEST(EvalSequenceTest, FrameCountMismatchIsAClearError) {
   VectorSequence ref = Planes(3, 0.0f);
   VectorSequence test = Planes(2, 0.0f);
@@ -137,10 +222,22 @@ TEST(EvalSequenceTest, JsonHasSettingsPeakFramesAndMean) {
   EXPECT_EQ(j["mean"]["d2_psnr"], "inf");
   EXPECT_EQ(j["mean"]["coverage"], 1.0);
   EXPECT_FALSE(j["mean"].contains("frame"));
+  // The mean of frames: each exact frame counted as the cap, and counted.
+  EXPECT_EQ(j["frame_psnr_cap"], kFramePsnrCapDb);
+  EXPECT_EQ(j["mean"]["d1_psnr_mean_of_frames"], kFramePsnrCapDb);
+  EXPECT_EQ(j["mean"]["d2_psnr_mean_of_frames"], kFramePsnrCapDb);
+  EXPECT_EQ(j["mean"]["d1_psnr_capped_frames"], 2);
+  EXPECT_EQ(j["mean"]["d2_psnr_capped_frames"], 2);
 
   const std::string table = FormatEvalTable(*result);
   EXPECT_NE(table.find("D1 PSNR"), std::string::npos);
-  EXPECT_NE(table.find("  mean      inf      inf"), std::string::npos) << table;
+  EXPECT_NE(table.find("      mean MSE      inf      inf"), std::string::npos) << table;
+  EXPECT_NE(table.find("mean of frames   100.00   100.00\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("mean MSE: PSNR of the mean MSE over frames"), std::string::npos);
+  EXPECT_NE(table.find("mean of frames: mean of the per-frame PSNRs (MPEG CTC), each counted as "
+                       "at most 100 dB; frames capped: D1 2, D2 2."),
+            std::string::npos)
+      << table;
 }
 
 TEST(EvalSequenceTest, WriteJsonNamesTheFileOnFailure) {

@@ -4,7 +4,7 @@ set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "chickenCrossing-3-arc-rd.png"
 set title "chickenCrossing, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR (dB)"
+set ylabel "D1 PSNR, of the mean MSE (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced

@@ -39,6 +39,11 @@ double GetNumber(const json& j, const char* key) {
   return it->get<double>();
 }
 
+/// As GetNumber, but a missing key is NaN: a figure older records do not hold.
+double GetOptionalNumber(const json& j, const char* key) {
+  return j.contains(key) ? GetNumber(j, key) : std::numeric_limits<double>::quiet_NaN();
+}
+
 json CostToJson(const StepCost& c) {
   return {{"wall_seconds", c.wall_seconds},
           {"cpu_seconds", c.cpu_seconds},
@@ -102,6 +107,8 @@ json PointToJson(const BenchPoint& p) {
           {"mbit_per_s", Number(p.mbit_per_s)},
           {"d1_psnr", Number(p.d1_psnr)},
           {"d2_psnr", Number(p.d2_psnr)},
+          {"d1_psnr_mean_of_frames", Number(p.d1_psnr_mean_of_frames)},
+          {"d2_psnr_mean_of_frames", Number(p.d2_psnr_mean_of_frames)},
           {"accuracy_rms", Number(p.accuracy_rms)},
           {"completeness_rms", Number(p.completeness_rms)},
           {"hausdorff", Number(p.hausdorff)},
@@ -127,6 +134,8 @@ BenchPoint PointFromJson(const json& j) {
   p.mbit_per_s = GetNumber(j, "mbit_per_s");
   p.d1_psnr = GetNumber(j, "d1_psnr");
   p.d2_psnr = GetNumber(j, "d2_psnr");
+  p.d1_psnr_mean_of_frames = GetOptionalNumber(j, "d1_psnr_mean_of_frames");
+  p.d2_psnr_mean_of_frames = GetOptionalNumber(j, "d2_psnr_mean_of_frames");
   p.accuracy_rms = GetNumber(j, "accuracy_rms");
   p.completeness_rms = GetNumber(j, "completeness_rms");
   p.hausdorff = GetNumber(j, "hausdorff");
@@ -208,6 +217,7 @@ std::string BenchRecordToJson(const BenchRecord& r) {
     j["bd_rates"].push_back({{"codec", b.codec},
                              {"level", b.level},
                              {"ok", b.ok},
+                             {"psnr", b.psnr},
                              {"delta", Number(b.delta)},
                              {"psnr_low", Number(b.psnr_low)},
                              {"psnr_high", Number(b.psnr_high)},
@@ -267,6 +277,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
       entry.codec = b.value("codec", "");
       entry.level = b.value("level", 0);
       entry.ok = b.value("ok", false);
+      entry.psnr = b.value("psnr", std::string(kPsnrOfMeanMse));
       entry.delta = GetNumber(b, "delta");
       entry.psnr_low = GetNumber(b, "psnr_low");
       entry.psnr_high = GetNumber(b, "psnr_high");
@@ -347,16 +358,32 @@ void UpsertEncode(BenchRecord& record, const BenchEncode& encode) {
   }
 }
 
+bool HasMeanOfFramesPsnr(const BenchPoint& point) {
+  return !std::isnan(point.d1_psnr_mean_of_frames);
+}
+
+std::string RecordPsnrKind(const BenchRecord& record) {
+  for (const BenchPoint& p : record.points) {
+    if (p.ok && !HasMeanOfFramesPsnr(p)) return kPsnrOfMeanMse;
+  }
+  return kPsnrMeanOfFrames;
+}
+
+double D1Psnr(const BenchPoint& point, const std::string& kind) {
+  return kind == kPsnrOfMeanMse ? point.d1_psnr : point.d1_psnr_mean_of_frames;
+}
+
 void ComputeBdRates(BenchRecord& record) {
   record.bd_rates.clear();
+  const std::string kind = RecordPsnrKind(record);
   std::vector<RdPoint> baseline;
   std::map<std::pair<std::string, int>, std::vector<RdPoint>> curves;  // (codec, level)
   for (const BenchPoint& p : record.points) {
     if (!p.ok) continue;
     if (p.method == kMethodBaseline) {
-      baseline.push_back({p.bytes_per_frame, p.d1_psnr});
+      baseline.push_back({p.bytes_per_frame, D1Psnr(p, kind)});
     } else if (p.method == kMethodMeshvid) {
-      curves[{p.codec, p.level}].push_back({p.bytes_per_frame, p.d1_psnr});
+      curves[{p.codec, p.level}].push_back({p.bytes_per_frame, D1Psnr(p, kind)});
     }
   }
   for (const auto& [key, points] : curves) {
@@ -365,6 +392,7 @@ void ComputeBdRates(BenchRecord& record) {
     BdRateEntry entry;
     entry.codec = key.first;
     entry.level = key.second;
+    entry.psnr = kind;
     StatusOr<BdRateResult> result = BjontegaardDeltaRate(baseline, points);
     if (result.ok()) {
       entry.ok = true;

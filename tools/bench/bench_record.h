@@ -5,6 +5,7 @@
 #ifndef MESHVID_TOOLS_BENCH_BENCH_RECORD_H_
 #define MESHVID_TOOLS_BENCH_BENCH_RECORD_H_
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ inline constexpr const char* kBenchRecordFormat = "meshvid-bench-record/1";
 /// Method names in records.
 inline constexpr const char* kMethodMeshvid = "meshvid";
 inline constexpr const char* kMethodBaseline = "baseline";
+
+/// Which D1 PSNR a BD-rate or RD plot uses (BdRateEntry::psnr): the mean of the per-frame
+/// PSNRs (MPEG CTC averaging, the default), or the PSNR of the mean MSE over frames (the only
+/// figure of records written before the mean of frames was recorded).
+inline constexpr const char* kPsnrMeanOfFrames = "d1_psnr_mean_of_frames";
+inline constexpr const char* kPsnrOfMeanMse = "d1_psnr";
 
 /// What one child process step cost.
 struct StepCost {
@@ -58,8 +65,12 @@ struct BenchPoint {
   int frames = 0;
   double bytes_per_frame = 0;
   double mbit_per_s = 0;  ///< at the capture's frame rate
-  double d1_psnr = 0;     ///< dB, of the mean MSE over frames (meshvid eval's mean)
-  double d2_psnr = 0;
+  double d1_psnr = 0;     ///< dB, of the mean MSE over frames (meshvid eval's mean.d1_psnr)
+  double d2_psnr = 0;     ///< dB, of the mean MSE over frames
+  /// dB, the mean of the per-frame PSNRs, each at most 100 dB (meshvid eval's
+  /// mean.d1_psnr_mean_of_frames); NaN in points recorded before it was (older records).
+  double d1_psnr_mean_of_frames = std::numeric_limits<double>::quiet_NaN();
+  double d2_psnr_mean_of_frames = std::numeric_limits<double>::quiet_NaN();  ///< as D1
   double accuracy_rms = 0;
   double completeness_rms = 0;
   double hausdorff = 0;
@@ -78,6 +89,9 @@ struct BdRateEntry {
   std::string codec;
   int level = 0;
   bool ok = false;
+  /// The D1 PSNR it was computed on: kPsnrMeanOfFrames, or kPsnrOfMeanMse for an older record
+  /// (also what a stored entry without this field was computed on).
+  std::string psnr = kPsnrMeanOfFrames;
   double delta = 0;  ///< fraction: -0.9 = 90% fewer bytes at equal D1 PSNR
   double psnr_low = 0;
   double psnr_high = 0;
@@ -158,8 +172,21 @@ void UpsertPoint(BenchRecord& record, const BenchPoint& point);
 /// Stores `encode`, replacing the one with the same method, codec and quality.
 void UpsertEncode(BenchRecord& record, const BenchEncode& encode);
 
+/// True when the point holds the mean of its per-frame PSNRs (points recorded before it was
+/// do not).
+bool HasMeanOfFramesPsnr(const BenchPoint& point);
+
+/// The D1 PSNR a record's BD-rates and RD plot use: kPsnrMeanOfFrames when every successful
+/// point has it, else kPsnrOfMeanMse (an older record; one figure for all points, so curves
+/// stay comparable).
+std::string RecordPsnrKind(const BenchRecord& record);
+
+/// The point's D1 PSNR of `kind` (kPsnrMeanOfFrames or kPsnrOfMeanMse).
+double D1Psnr(const BenchPoint& point, const std::string& kind);
+
 /// Recomputes record.bd_rates: for every meshvid codec with >= 2 qualities and every level,
-/// the BD-rate (D1 PSNR, bytes per frame, piecewise-cubic) against the baseline's points.
+/// the BD-rate (RecordPsnrKind's D1 PSNR, bytes per frame, piecewise-cubic) against the
+/// baseline's points.
 void ComputeBdRates(BenchRecord& record);
 
 }  // namespace meshvid

@@ -23,6 +23,11 @@ std::string Fmt(const char* format, double value) {
 
 std::string Percent(double fraction) { return Fmt("%+.1f%%", 100 * fraction); }
 
+/// How a D1 PSNR kind (BdRateEntry::psnr) is named in the report.
+std::string PsnrKindLabel(const std::string& kind) {
+  return kind == kPsnrOfMeanMse ? "mean MSE (older record)" : "mean of frames";
+}
+
 std::string Upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return text;
@@ -89,9 +94,10 @@ std::string PointRow(const BenchPoint& p) {
   row += " | " + Upper(p.codec) + " | " + setting + " | ";
   row += baseline ? std::string("-") : std::to_string(p.level);
   row += " | ";
-  if (!p.ok) return row + "failed | | | | | | | | | | |\n";
+  if (!p.ok) return row + "failed | | | | | | | | | | | | |\n";
   row += Fmt("%.0f", p.bytes_per_frame) + " | " + Fmt("%.3g", p.mbit_per_s) + " | " +
-         Fmt("%.2f", p.d1_psnr) + " | " + Fmt("%.2f", p.d2_psnr) + " | " +
+         Fmt("%.2f", p.d1_psnr_mean_of_frames) + " | " + Fmt("%.2f", p.d1_psnr) + " | " +
+         Fmt("%.2f", p.d2_psnr_mean_of_frames) + " | " + Fmt("%.2f", p.d2_psnr) + " | " +
          Fmt("%.3g", 1e3 * p.accuracy_rms) + " | " + Fmt("%.3g", 1e3 * p.completeness_rms) + " | " +
          Fmt("%.1f%%", 100 * p.coverage) + " | " + Fmt("%.3g", p.encode_fps) + " | " +
          Fmt("%.3g", p.decode_fps) + " | " + Fmt("%.0f", p.encode_peak_mb) + " | " +
@@ -111,28 +117,34 @@ std::string RecordSection(const BenchRecord& record, const ReportOptions& option
   if (!record.simulate_ok) {
     return md + "**Simulation failed**, nothing else ran: " + record.simulate_error + "\n\n";
   }
+  const std::string psnr_kind = RecordPsnrKind(record);
   const auto plot = options.plots.find(name);
   if (plot != options.plots.end()) {
-    md += "![D1 PSNR against rate, " + name + "](" + plot->second + ")\n\n";
+    md += "![D1 PSNR, " + PsnrKindLabel(psnr_kind) + ", against rate, " + name + "](" +
+          plot->second + ")\n\n";
   } else if (!options.plot_note.empty()) {
     md += "(No plot: " + options.plot_note + ")\n\n";
   }
   if (!record.bd_rates.empty()) {
-    md += "BD-rate against the baseline (D1 PSNR, bytes per frame; negative = fewer bytes):\n\n";
-    md += "| codec | level | BD-rate | over D1 PSNR | note |\n|---|---|---|---|---|\n";
+    md +=
+        "BD-rate against the baseline (bytes per frame at equal D1 PSNR, the D1 PSNR named in "
+        "the table; negative = fewer bytes):\n\n";
+    md += "| codec | level | BD-rate | D1 PSNR | over D1 PSNR | note |\n";
+    md += "|---|---|---|---|---|---|\n";
     for (const BdRateEntry& b : record.bd_rates) {
       md += "| " + Upper(b.codec) + " | " + std::to_string(b.level) + " | " +
             (b.ok ? "**" + Percent(b.delta) + "**" : std::string("n/a")) + " | " +
+            PsnrKindLabel(b.psnr) + " | " +
             (b.ok ? Fmt("%.2f", b.psnr_low) + " - " + Fmt("%.2f", b.psnr_high) + " dB" : "") +
             " | " + b.note + " |\n";
     }
     md += "\n";
   }
   md +=
-      "| method | codec | setting | level | bytes/frame | Mbit/s | D1 PSNR | D2 PSNR | "
-      "accuracy RMS (1e-3) | completeness RMS (1e-3) | coverage | encode fps | decode fps | "
-      "encode MB | decode MB |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| method | codec | setting | level | bytes/frame | Mbit/s | D1 PSNR, mean of frames | "
+      "D1 PSNR, mean MSE | D2 PSNR, mean of frames | D2 PSNR, mean MSE | accuracy RMS (1e-3) | "
+      "completeness RMS (1e-3) | coverage | encode fps | decode fps | encode MB | decode MB |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<BenchPoint> points = record.points;
   std::stable_sort(points.begin(), points.end(), [](const BenchPoint& a, const BenchPoint& b) {
     if (a.method != b.method) return a.method == kMethodBaseline;
@@ -142,6 +154,12 @@ std::string RecordSection(const BenchRecord& record, const ReportOptions& option
   });
   for (const BenchPoint& p : points) md += PointRow(p);
   md += "\n";
+  if (psnr_kind == kPsnrOfMeanMse) {
+    md +=
+        "This record predates the mean of per-frame PSNRs (n/a above, for some or all points): "
+        "its BD-rates and plot use the D1 PSNR of the mean MSE. Running the same `meshvid "
+        "bench` command again measures it.\n\n";
+  }
   std::string failures;
   if (!record.baseline_ok && !record.baseline_error.empty()) {
     failures += "- baseline: " + record.baseline_error + "\n";
@@ -235,6 +253,10 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "arc and with 6 views on a ring; everything below runs on that capture and is measured "
       "against the simulated frames' ground truth with `meshvid eval` (the mean over frames; "
       "D1/D2 PSNR with peak p = the ground truth's bounding-box diagonal).\n"
+      "- A sequence's D1/D2 PSNR is given two ways: **mean of frames**, the mean of the "
+      "per-frame PSNRs (how MPEG's common test conditions average a sequence, so it compares "
+      "with published figures; a frame counts as at most 100 dB), and **mean MSE**, the PSNR "
+      "of the mean MSE over frames (lower: a few bad frames weigh more).\n"
       "- **meshvid**: `meshvid encode` at several qualities per codec (HEVC, AV1; FFV1 is the "
       "lossless reference, one point), each file decoded (`meshvid decode --no-write`) and "
       "evaluated at every level 0..L. Rate = the whole .mvid file.\n"
@@ -256,7 +278,9 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "own at spawn; the baseline's encode memory is that of its one run (fusion and coding "
       "at every setting).\n"
       "- BD-rate: Bjontegaard delta rate of each meshvid codec and level (over its qualities) "
-      "against the baseline, on D1 PSNR: log10(bytes per frame) as a monotone piecewise-cubic "
+      "against the baseline, on D1 PSNR, mean of frames (a record written before that figure "
+      "existed falls back to the D1 PSNR of the mean MSE, named in its BD-rate table): "
+      "log10(bytes per frame) as a monotone piecewise-cubic "
       "(PCHIP, Fritsch-Carlson) function of PSNR, integrated over the PSNR interval both "
       "curves cover (the piecewise-cubic variant of VCEG-M33). n/a when the intervals do "
       "not overlap.\n\n";

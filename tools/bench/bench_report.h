@@ -32,10 +32,11 @@ struct ReportOptions {
 std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
                                     const ReportOptions& options);
 
-/// A gnuplot script drawing the record's D1 PSNR against Mbit/s (log scale): the baseline,
-/// every meshvid codec at every level (the finest level solid), the lossless point. The
-/// data are inline; the script writes `png_name` in the folder it is run from. Returns ""
-/// if the record has no successful point to draw.
+/// A gnuplot script drawing the record's D1 PSNR (RecordPsnrKind's, which its BD-rates use;
+/// the y label names it) against Mbit/s (log scale): the baseline, every meshvid codec at every
+/// level (the finest level solid), the lossless point. The data are inline; the script writes
+/// `png_name` in the folder it is run from. Returns "" if the record has no successful point
+/// to draw.
 std::string RdPlotScript(const BenchRecord& record, const std::string& png_name);
 
 /// Writes <results_dir>/<name>.gp for every record and runs gnuplot on it (from PATH) to make

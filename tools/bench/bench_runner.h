@@ -3,7 +3,8 @@
 // run the per-frame baseline (fusion + Draco) on the same capture and evaluate it the same
 // way, and record everything (bench_record.h). Every step runs as a child process of the
 // `meshvid` executable, measured for wall time and peak memory; a failing step is recorded
-// and the run goes on. Finished steps found in an existing record are not run again.
+// and the run goes on. Finished steps found in an existing record are not run again (points
+// of an older record, without the mean of per-frame PSNRs, are measured again).
 #ifndef MESHVID_TOOLS_BENCH_BENCH_RUNNER_H_
 #define MESHVID_TOOLS_BENCH_BENCH_RUNNER_H_
 

@@ -44,7 +44,8 @@ std::string Quote(const std::string& text) {
   return out + "\"";
 }
 
-std::vector<Series> CollectSeries(const BenchRecord& record) {
+/// The curves of `record`, on its D1 PSNR of `kind` (RecordPsnrKind).
+std::vector<Series> CollectSeries(const BenchRecord& record, const std::string& kind) {
   std::map<std::string, int> finest;  // codec -> finest level with a point
   for (const BenchPoint& p : record.points) {
     if (p.method == kMethodMeshvid) finest[p.codec] = std::max(finest[p.codec], p.level);
@@ -54,9 +55,10 @@ std::vector<Series> CollectSeries(const BenchRecord& record) {
   baseline.title = "baseline: per-frame fusion + Draco";
   baseline.style = "linespoints lw 2 pt 5 ps 1.2 lc rgb \"black\"";
   for (const BenchPoint& p : record.points) {
-    if (!p.ok || !std::isfinite(p.d1_psnr) || !(p.mbit_per_s > 0)) continue;
+    const double psnr = D1Psnr(p, kind);
+    if (!p.ok || !std::isfinite(psnr) || !(p.mbit_per_s > 0)) continue;
     if (p.method == kMethodBaseline) {
-      baseline.points.emplace_back(p.mbit_per_s, p.d1_psnr);
+      baseline.points.emplace_back(p.mbit_per_s, psnr);
       continue;
     }
     // The lossless reference is one point per level: draw only its finest level.
@@ -72,7 +74,7 @@ std::vector<Series> CollectSeries(const BenchRecord& record) {
                     top ? 7 : 6 + 2 * (finest[p.codec] - p.level) % 8, CodecColour(p.codec));
       s.style = style;
     }
-    s.points.emplace_back(p.mbit_per_s, p.d1_psnr);
+    s.points.emplace_back(p.mbit_per_s, psnr);
   }
   std::vector<Series> series;
   if (!baseline.points.empty()) series.push_back(baseline);
@@ -84,7 +86,8 @@ std::vector<Series> CollectSeries(const BenchRecord& record) {
 }  // namespace
 
 std::string RdPlotScript(const BenchRecord& record, const std::string& png_name) {
-  const std::vector<Series> series = CollectSeries(record);
+  const std::string kind = RecordPsnrKind(record);
+  const std::vector<Series> series = CollectSeries(record, kind);
   if (series.empty()) return "";
   char title[256];
   std::snprintf(title, sizeof(title),
@@ -98,7 +101,8 @@ std::string RdPlotScript(const BenchRecord& record, const std::string& png_name)
   s += "set output " + Quote(png_name) + "\n";
   s += "set title " + Quote(title) + " noenhanced\n";
   s += "set xlabel \"rate (Mbit/s at the capture rate, log scale)\"\n";
-  s += "set ylabel \"D1 PSNR (dB)\"\n";
+  s += std::string("set ylabel \"D1 PSNR, ") +
+       (kind == kPsnrOfMeanMse ? "of the mean MSE" : "mean of frames") + " (dB)\"\n";
   s += "set logscale x\nset grid xtics ytics mxtics\nset key outside right top noenhanced\n";
   for (std::size_t i = 0; i < series.size(); ++i) {
     s += "$s" + std::to_string(i) + " << EOD\n";

@@ -73,7 +73,10 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
       "Measure a test sequence against ground truth, per frame and on average: D1/D2 PSNR\n"
       "(MPEG pc_error, peak p = ground truth bounding-box diagonal over all its frames),\n"
       "RMS accuracy (test->ref), RMS completeness (ref->test), Hausdorff, coverage.\n"
-      "An exact frame has PSNR inf; the mean's PSNR is that of the mean MSE.");
+      "An exact frame has PSNR inf. A sequence's PSNR is given twice: of the mean MSE\n"
+      "(\"mean MSE\"; JSON mean.d1_psnr) and as the mean of per-frame PSNRs, MPEG CTC's\n"
+      "average, each frame counted as at most 100 dB (\"mean of frames\"; JSON\n"
+      "mean.d1_psnr_mean_of_frames).");
   cmd->add_option("--ref", args->ref,
                   "Ground truth: scene:NAME, NAME.obj (+NAME.pc2), a folder or a {frame} pattern")
       ->required();

@@ -44,11 +44,28 @@ std::string FormatPsnr(double psnr) {
   return buffer;
 }
 
+/// Width of the first column, which holds "mean of frames".
+constexpr int kLabelWidth = 14;
+
 std::string FormatRow(const std::string& label, const FrameMetrics& m) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof(buffer), "%6s %8s %8s %11.4g %11.4g %11.4g %8.2f%%\n",
+  char buffer[192];
+  std::snprintf(buffer, sizeof(buffer), "%*s %8s %8s %11.4g %11.4g %11.4g %8.2f%%\n", kLabelWidth,
                 label.c_str(), FormatPsnr(m.d1_psnr).c_str(), FormatPsnr(m.d2_psnr).c_str(),
                 m.accuracy_rms, m.completeness_rms, m.hausdorff, 100.0 * m.coverage);
+  return buffer;
+}
+
+/// The "mean of frames" row (PSNR columns only) and the lines saying what both mean rows are.
+std::string FormatMeanOfFrames(const PsnrMeanOfFrames& m) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof(buffer),
+                "%*s %8s %8s\n"
+                "mean MSE: PSNR of the mean MSE over frames (other columns: mean over frames).\n"
+                "mean of frames: mean of the per-frame PSNRs (MPEG CTC), each counted as at most "
+                "%g dB; frames capped: D1 %d, D2 %d.\n",
+                kLabelWidth, "mean of frames", FormatPsnr(m.d1_psnr).c_str(),
+                FormatPsnr(m.d2_psnr).c_str(), kFramePsnrCapDb, m.d1_capped_frames,
+                m.d2_capped_frames);
   return buffer;
 }
 
@@ -67,9 +84,14 @@ std::string EvalResultToJson(const EvalResult& result) {
   };
   j["peak"] = result.peak;
   j["coverage_tolerance"] = result.coverage_tolerance;
+  j["frame_psnr_cap"] = kFramePsnrCapDb;
   j["frames"] = nlohmann::json::array();
   for (const FrameMetrics& m : result.frames) j["frames"].push_back(MetricsToJson(m));
   j["mean"] = MetricsToJson(result.mean);
+  j["mean"]["d1_psnr_mean_of_frames"] = JsonNumber(result.mean_of_frames.d1_psnr);
+  j["mean"]["d2_psnr_mean_of_frames"] = JsonNumber(result.mean_of_frames.d2_psnr);
+  j["mean"]["d1_psnr_capped_frames"] = result.mean_of_frames.d1_capped_frames;
+  j["mean"]["d2_psnr_capped_frames"] = result.mean_of_frames.d2_capped_frames;
   return j.dump(2) + "\n";
 }
 
@@ -82,12 +104,13 @@ std::string FormatEvalTable(const EvalResult& result) {
   std::snprintf(header, sizeof(header),
                 "peak p = %.6g (reference bounding-box diagonal), coverage tolerance = %.4g, "
                 "%zu samples per surface\n"
-                "%6s %8s %8s %11s %11s %11s %9s\n",
-                result.peak, result.coverage_tolerance, result.samples, "frame", "D1 PSNR",
-                "D2 PSNR", "accuracy", "complete", "Hausdorff", "coverage");
+                "%*s %8s %8s %11s %11s %11s %9s\n",
+                result.peak, result.coverage_tolerance, result.samples, kLabelWidth, "frame",
+                "D1 PSNR", "D2 PSNR", "accuracy", "complete", "Hausdorff", "coverage");
   std::string text = header;
   for (const FrameMetrics& m : result.frames) text += FormatRow(std::to_string(m.frame), m);
-  text += FormatRow("mean", result.mean);
+  text += FormatRow("mean MSE", result.mean);
+  text += FormatMeanOfFrames(result.mean_of_frames);
   return text;
 }
 

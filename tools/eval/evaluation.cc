@@ -1,6 +1,8 @@
 #include "tools/eval/evaluation.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "tools/eval/sampling.h"
@@ -58,6 +60,24 @@ FrameMetrics MeanFrameMetrics(const std::vector<FrameMetrics>& frames, double pe
   mean.d1_psnr = PsnrFromMse(mean.d1_mse, peak);
   mean.d2_psnr = PsnrFromMse(mean.d2_mse, peak);
   return mean;
+}
+
+PsnrMeanOfFrames MeanOfFramePsnrs(const std::vector<FrameMetrics>& frames) {
+  PsnrMeanOfFrames result;
+  if (frames.empty()) {
+    result.d1_psnr = result.d2_psnr = std::numeric_limits<double>::quiet_NaN();
+    return result;
+  }
+  for (const FrameMetrics& f : frames) {
+    result.d1_psnr += std::min(f.d1_psnr, kFramePsnrCapDb);
+    result.d2_psnr += std::min(f.d2_psnr, kFramePsnrCapDb);
+    if (f.d1_psnr >= kFramePsnrCapDb) ++result.d1_capped_frames;
+    if (f.d2_psnr >= kFramePsnrCapDb) ++result.d2_capped_frames;
+  }
+  const double n = static_cast<double>(frames.size());
+  result.d1_psnr /= n;
+  result.d2_psnr /= n;
+  return result;
 }
 
 StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
@@ -135,6 +155,7 @@ StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
   }
   ReportProgress(progress, "evaluate", total, total);
   result.mean = MeanFrameMetrics(result.frames, result.peak);
+  result.mean_of_frames = MeanOfFramePsnrs(result.frames);
   return result;
 }
 

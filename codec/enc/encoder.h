@@ -81,10 +81,22 @@ struct EncoderOptions {
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
   /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one
-  /// full-resolution frame and one group of displacement frames are held besides). Longer
-  /// captures are segmented on `window` frames spread evenly over them, and every frame is
-  /// then tracked with the segments found.
+  /// full-resolution frame and `window` displacement frames are held besides). A key group
+  /// that may not be cut (the last of max_key_groups) longer than this is segmented on
+  /// `window` frames spread evenly over it, and every frame is then tracked with the segments.
   int window = 256;
+
+  // --- key groups (a fresh base where tracking no longer explains the data)
+  /// A new key group starts at a frame whose captured points farther from the tracked base
+  /// than the displacement range (detail_max_distance) exceed the key frame's share by more
+  /// than this (0..1). Smaller: more key groups, closer to per-frame fusion.
+  double key_group_threshold = 0.02;
+  /// Most key groups (0: no limit). 1 keeps one base and one connectivity for the whole
+  /// capture, as the paper does (for editing).
+  int max_key_groups = 0;
+  /// Frames a key group's segmentation analyses jointly before the fit decides where it
+  /// ends; past them its segments are tracked frame by frame while they explain the data.
+  int key_group_window = 48;
   int first_frame = 0;           ///< frames [first_frame, end_frame) are encoded
   int end_frame = -1;            ///< -1: to the end
   std::string metadata_json = "{}";
@@ -93,10 +105,28 @@ struct EncoderOptions {
 /// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).
 int QualityToQp(VideoCodec codec, int quality);
 
+/// One key group of an encode.
+struct KeyGroupSummary {
+  int first_frame = 0;          ///< the capture's frame number of its key frame
+  int frames = 0;
+  std::size_t base_vertices = 0;
+  int segments = 0;
+  int patches = 0;
+  double registered_share = 0;  ///< base vertices that joined a segment
+  double surface_share = 0;     ///< base triangles seen by some view
+  double key_frame_unexplained = 0;  ///< share of the key frame's points the base cannot reach
+  double worst_unexplained = 0;      ///< the same, at the worst frame kept in the key group
+  /// At the frame that ended the key group (the next key frame), or -1 when the capture (or
+  /// max_key_groups) ended it.
+  double cut_unexplained = -1;
+};
+
 /// What an encode produced, for the summary a tool prints.
 struct EncodeSummary {
   int frames = 0;
   int views = 0;
+  std::vector<KeyGroupSummary> key_groups;
+  // Key group 0's base and lattice; segment figures are means over the key groups.
   std::size_t base_vertices = 0;
   std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
   int segments = 0;
@@ -113,8 +143,9 @@ struct EncodeSummary {
          seconds_detail = 0, seconds_coding = 0;
 };
 
-/// Encodes frames of `source` into `sink`. Stages report progress ("base mesh", "proxies",
-/// "segmentation", "detail"); a cancelled callback stops with kCancelled.
+/// Encodes frames of `source` into `sink`, key group after key group. Stages report progress
+/// ("base mesh", "proxies", "segmentation", "tracking", "detail"); a cancelled callback stops
+/// with kCancelled.
 StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
                                       const EncoderOptions& options,
                                       const ProgressCallback& progress = {});

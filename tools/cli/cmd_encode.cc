@@ -77,6 +77,19 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["surface_share"] = s.surface_share;
   j["filled_share"] = s.filled_share;
   j["hit_share"] = s.hit_share;
+  j["key_groups"] = nlohmann::json::array();
+  for (const KeyGroupSummary& k : s.key_groups) {
+    j["key_groups"].push_back({{"first_frame", k.first_frame},
+                               {"frames", k.frames},
+                               {"base_vertices", k.base_vertices},
+                               {"segments", k.segments},
+                               {"patches", k.patches},
+                               {"registered_share", k.registered_share},
+                               {"surface_share", k.surface_share},
+                               {"key_frame_unexplained", k.key_frame_unexplained},
+                               {"worst_unexplained", k.worst_unexplained},
+                               {"cut_unexplained", k.cut_unexplained}});
+  }
   j["scale"] = s.scale;
   j["tolerance"] = s.tolerance;
   j["bytes_total"] = s.stats.total_bytes;
@@ -101,6 +114,7 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
   const MvidWriteStats& b = s.stats;
   std::fprintf(stderr,
                "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
+               "  key groups    %zu (mean %.1f frames; a fresh base where tracking lost the data)\n"
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
                "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d patches "
                "over the rest; %.1f%% of base triangles seen\n"
@@ -108,7 +122,8 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
                "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
                s.frames, s.views, args.capture.c_str(), args.output.c_str(), seconds,
-               frames / seconds, s.base_vertices, s.samples_per_frame, args.options.levels,
+               frames / seconds, s.key_groups.size(),
+               frames / double(std::max<std::size_t>(1, s.key_groups.size())), s.base_vertices, s.samples_per_frame, args.options.levels,
                s.segments, 100 * s.registered_share, s.patches, 100 * s.surface_share,
                100 * s.hit_share, 100 * s.filled_share,
                Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
@@ -197,12 +212,26 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--gof", o.gof_size, "Frames per group (random-access unit)")
       ->capture_default_str();
   cmd->add_option("--window", o.window,
-                  "Most frames the segmentation analyses jointly; longer captures are "
-                  "segmented on this many frames spread over them and then tracked")
+                  "Most frames the segmentation analyses jointly (and displacement frames "
+                  "filled together); a key group that may not be cut and is longer is "
+                  "segmented on this many frames spread over it and then tracked")
+      ->capture_default_str();
+  cmd->add_option("--key-group-threshold", o.key_group_threshold,
+                  "Start a new key group (a fresh base fused from that frame) where the share "
+                  "of captured points the tracked base cannot reach (farther than the "
+                  "displacement range) grows by more than this over its key frame's, 0..1")
+      ->capture_default_str();
+  cmd->add_option("--max-key-groups", o.max_key_groups,
+                  "Most key groups; 1 keeps one base and one connectivity for the whole "
+                  "capture (for editing), 0: no limit")
+      ->capture_default_str();
+  cmd->add_option("--key-group-window", o.key_group_window,
+                  "Frames a key group's segmentation analyses jointly before the fit decides "
+                  "where it ends; past them its segments are tracked frame by frame")
       ->capture_default_str();
   cmd->add_option("--base-mesh", args->base_mesh,
-                  "Use this mesh (PLY/OBJ) as the base, rigidly fitted to the first frame, "
-                  "instead of fusing the first frame's views");
+                  "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "
+                  "first frame, instead of fusing that frame's views");
   cmd->add_option("--base-vertices", o.base_vertices,
                   "Vertices of the automatic base mesh after decimation")
       ->capture_default_str();

@@ -1,0 +1,77 @@
+#include "codec/enc/data_fit.h"
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+
+#include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+namespace meshvid {
+namespace {
+
+/// nanoflann's view of the surface samples.
+struct SampleCloud {
+  std::span<const Eigen::Vector3f> points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][dim]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+using SampleTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, SampleCloud>,
+                                        SampleCloud, 3, std::uint32_t>;
+
+struct Sums {
+  double squares = 0;
+  std::size_t unexplained = 0;
+};
+
+}  // namespace
+
+DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
+                       std::span<const Eigen::Vector3f> data_points,
+                       float representable_distance) {
+  DataFit fit;
+  fit.points = data_points.size();
+  if (data_points.empty()) return fit;
+  if (surface_samples.empty()) {
+    fit.unexplained_share = 1;
+    fit.rms_distance = std::numeric_limits<double>::infinity();
+    return fit;
+  }
+  const SampleCloud cloud{surface_samples};
+  const SampleTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const float limit_squared = representable_distance * representable_distance;
+  const Sums sums = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, data_points.size(), 2048), Sums{},
+      [&](const tbb::blocked_range<std::size_t>& range, Sums partial) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          std::uint32_t nearest = 0;
+          float squared = 0;
+          tree.knnSearch(data_points[i].data(), 1, &nearest, &squared);
+          partial.squares += squared;
+          partial.unexplained += squared > limit_squared;
+        }
+        return partial;
+      },
+      [](Sums a, const Sums& b) {
+        a.squares += b.squares;
+        a.unexplained += b.unexplained;
+        return a;
+      });
+  fit.unexplained_share = double(sums.unexplained) / double(data_points.size());
+  fit.rms_distance = std::sqrt(sums.squares / double(data_points.size()));
+  return fit;
+}
+
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold) {
+  if (frame.points == 0) return true;
+  return frame.unexplained_share <= key_frame.unexplained_share + threshold;
+}
+
+}  // namespace meshvid

@@ -1,0 +1,36 @@
+// How well a tracked base mesh explains a frame's captured data: the encoder's rule for
+// starting a new key group (a fresh base) where tracking has lost the subject.
+#ifndef MESHVID_CODEC_ENC_DATA_FIT_H_
+#define MESHVID_CODEC_ENC_DATA_FIT_H_
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace meshvid {
+
+/// The fit of captured points to a surface given by dense samples of it.
+struct DataFit {
+  /// Share of the points farther than the representable distance from the surface: data the
+  /// surface's displacements cannot reach, 0..1.
+  double unexplained_share = 0;
+  double rms_distance = 0;  ///< root mean square point-to-surface distance (sample-based)
+  std::size_t points = 0;   ///< points measured (0: the frame had no data)
+};
+
+/// Measures how far `data_points` lie from the surface sampled by `surface_samples` (nearest
+/// sample, k-d tree; samples should be much denser than `representable_distance`). A point is
+/// unexplained when it is farther than `representable_distance`.
+DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
+                       std::span<const Eigen::Vector3f> data_points,
+                       float representable_distance);
+
+/// Whether the tracked surface still explains a frame: its unexplained share has grown by at
+/// most `threshold` over the key frame's (where the base was fused from the data itself).
+/// A frame without data is explained (nothing contradicts the motion).
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_DATA_FIT_H_

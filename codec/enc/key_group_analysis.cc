@@ -1,0 +1,348 @@
+#include "codec/enc/key_group_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <tbb/parallel_for.h>
+
+#include "codec/common/subdivision.h"
+#include "codec/enc/data_fit.h"
+#include "codec/enc/decimation.h"
+#include "codec/enc/motion_blend.h"
+#include "codec/enc/patch_tracking.h"
+#include "codec/enc/surface_fusion.h"
+
+namespace meshvid {
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Status Cancelled() { return CancelledError("encode cancelled"); }
+
+StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction) {
+  std::vector<StatusOr<TriangleMesh>> decimated(views.size(), TriangleMesh{});
+  tbb::parallel_for(std::size_t(0), views.size(), [&](std::size_t v) {
+    if (views[v].empty()) return;
+    DecimationOptions options;
+    options.target_vertices = std::max<std::size_t>(
+        16, static_cast<std::size_t>(fraction * double(views[v].vertex_count())));
+    decimated[v] = options.target_vertices >= views[v].vertex_count()
+                       ? StatusOr<TriangleMesh>(views[v])
+                       : DecimateMesh(views[v], options);
+  });
+  TriangleMesh proxy;
+  for (auto& view : decimated) {
+    if (!view.ok()) return view.status();
+    AppendMesh(*view, &proxy);
+  }
+  FrameProxy result;
+  if (proxy.empty()) return result;
+  MESHVID_ASSIGN_OR_RETURN(result.target, ShootingTarget::Create(proxy));
+  result.points = std::move(proxy.positions);
+  return result;
+}
+
+float DiagonalOf(const std::vector<TriangleMesh>& views) {
+  Eigen::AlignedBox3f box;
+  for (const TriangleMesh& view : views) box.extend(BoundingBox(view));
+  return box.isEmpty() ? 0.0f : box.diagonal().norm();
+}
+
+namespace {
+
+/// Points the fusion of a key frame's views uses for the base mesh.
+constexpr std::size_t kBaseFusionPoints = 20000;
+
+/// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
+/// fused views decimated.
+StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
+                                    const std::vector<TriangleMesh>& views,
+                                    const ShootingTarget* proxy) {
+  const EncoderOptions& options = ctx.options;
+  if (options.base_mesh) {
+    TriangleMesh base = *options.base_mesh;
+    MESHVID_RETURN_IF_ERROR(ValidateMesh(base, "the base mesh"));
+    base.normals.clear();
+    if (proxy != nullptr) {
+      const std::vector<std::int32_t> labels(base.vertex_count(), 0);
+      const std::vector<RigidTransform> identity(1);
+      const RigidTransform fitted =
+          TrackSegments(base, labels, 1, *proxy, identity, ctx.seg).front();
+      for (auto& p : base.positions) p = fitted.Apply(p);
+    }
+    return base;
+  }
+  // The base is decimated to a few thousand vertices: a fusion of fewer points is enough
+  // and 3.7x faster (samba frame 30: 1.7 s against 6.4 s, 2000 vertices either way).
+  SurfaceFusionOptions fusion_options;
+  fusion_options.max_points = kBaseFusionPoints;
+  MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));
+  DecimationOptions decimation;
+  decimation.target_vertices = options.base_vertices;
+  decimation.max_error = ctx.lengths.base_max_error;
+  decimation.max_normal_deviation_degrees = options.base_max_normal_deviation_degrees;
+  if (fused.vertex_count() <= options.base_vertices) return fused;
+  return DecimateMesh(fused, decimation);
+}
+
+/// Segments, patches and blend weights of a base over the frames `analysed` (all with
+/// proxies), and the tracks of those frames.
+struct SegmentedMotion {
+  std::vector<std::int32_t> labels;
+  int segment_count = 0;
+  std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
+};
+
+StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const TriangleMesh& base,
+                                        const std::vector<const ShootingTarget*>& targets,
+                                        KeyGroupSummary* summary) {
+  const EncoderOptions& options = ctx.options;
+  SegmentationOptions seg = ctx.seg;
+  // A long capture of a non-rigid subject leaves few vertices rigid with their segment in
+  // all but 5 frames; by default a tenth of the analysed frames may disagree.
+  if (options.occlusion_frames < 0) {
+    seg.occlusion_frames = std::max(5, static_cast<int>(targets.size()) / 10);
+  }
+  MESHVID_ASSIGN_OR_RETURN(Segmentation segmentation,
+                           SegmentPiecewiseRigid(base, targets, seg, ctx.progress));
+  SegmentedMotion result;
+  summary->segments = segmentation.segment_count;
+  std::size_t registered = 0;
+  for (std::int32_t label : segmentation.labels) registered += label >= 0;
+  summary->registered_share = double(registered) / double(base.vertex_count());
+  result.labels = segmentation.labels;
+  result.segment_count = segmentation.segment_count;
+  if (options.patch_vertices > 0) {
+    // Patches over the unregistered vertices, tracked jointly through the frames.
+    PatchTrackingOptions patching;
+    patching.patch_vertices = options.patch_vertices;
+    patching.max_segments = options.max_segments;
+    patching.stiffness = static_cast<float>(options.patch_stiffness);
+    result.segment_count = PartitionUnregistered(base, segmentation.segment_count,
+                                                 options.min_segment_vertices, patching,
+                                                 &result.labels);
+    MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
+                                         result.segment_count, targets, seg, patching,
+                                         &segmentation.transforms, ctx.progress));
+    result.segment_count =
+        MergePatchesIntoSegments(base, segmentation.segment_count, result.segment_count, seg,
+                                 &result.labels, &segmentation.transforms);
+  }
+  summary->patches = result.segment_count - segmentation.segment_count;
+  result.tracks = std::move(segmentation.transforms);
+  return result;
+}
+
+/// The base triangles some view saw (two corners or more) in some analysed frame; sets the
+/// summary's share and, with hide_unseen, the motion's surface mask.
+void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
+                 const std::vector<const ShootingTarget*>& targets,
+                 const std::vector<std::vector<RigidTransform>>& tracks, MotionModel* motion,
+                 KeyGroupSummary* summary) {
+  std::vector<char> observed(base.vertex_count(), 0);
+  std::vector<Eigen::Vector3f> posed, normals;
+  ShotLimits limits = ctx.seg.shot;
+  limits.max_distance = ctx.lengths.detail_max_distance;
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    if (targets[k] == nullptr) continue;
+    PoseVertices(*motion, tracks[k], base.positions, &posed);
+    ComputeVertexNormals(posed, base.triangles, &normals);
+    tbb::parallel_for(std::size_t(0), posed.size(), [&](std::size_t v) {
+      if (!observed[v] && !std::isnan(targets[k]->Shoot(posed[v], normals[v], limits))) {
+        observed[v] = 1;
+      }
+    });
+  }
+  motion->surface_triangles.resize(base.triangle_count());
+  std::size_t surface = 0;
+  for (std::size_t i = 0; i < base.triangle_count(); ++i) {
+    const Triangle& tri = base.triangles[i];
+    const int seen = observed[tri[0]] + observed[tri[1]] + observed[tri[2]];
+    motion->surface_triangles[i] = seen >= 2;
+    surface += seen >= 2;
+  }
+  summary->surface_share = double(surface) / double(base.triangle_count());
+  if (!ctx.options.hide_unseen) motion->surface_triangles.clear();
+}
+
+/// Measures how well the base posed by `transforms` explains a frame's data points.
+class FitMeter {
+ public:
+  FitMeter(const TriangleMesh& base, const MotionModel& motion, const RegularSubdivision& lattice,
+           float representable_distance)
+      : base_(base), motion_(motion), lattice_(lattice), distance_(representable_distance) {}
+  DataFit Measure(const std::vector<RigidTransform>& transforms,
+                  const std::vector<Eigen::Vector3f>& points) {
+    PoseVertices(motion_, transforms, base_.positions, &posed_);
+    ComputeVertexNormals(posed_, base_.triangles, &normals_);
+    EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
+    return MeasureDataFit(samples_, points, distance_);
+  }
+
+ private:
+  const TriangleMesh& base_;
+  const MotionModel& motion_;
+  const RegularSubdivision& lattice_;
+  float distance_;
+  std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
+};
+
+/// The motion of a key group's base over frames [start, stop): every `stride`-th frame
+/// segmented jointly (proxies cached), the others tracked from the previous frame. Fills the
+/// analysis' motion, tracks (stop - start of them) and segment figures.
+StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx, int start, int stop,
+                                          int stride, ProxyCache* proxies,
+                                          KeyGroupAnalysis* analysis) {
+  const EncoderOptions& options = ctx.options;
+  const TriangleMesh& base = analysis->base;
+  auto stage_start = Clock::now();
+  std::vector<int> analysed;
+  for (int t = start; t < stop; t += stride) analysed.push_back(t);
+  for (std::size_t k = 0; k < analysed.size(); ++k) {
+    if (!ReportProgress(ctx.progress, "proxies", long(k), long(analysed.size()))) {
+      return Cancelled();
+    }
+    if (proxies->count(analysed[k])) continue;
+    MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views,
+                             ctx.source.LoadFrame(analysed[k]));
+    MESHVID_ASSIGN_OR_RETURN((*proxies)[analysed[k]],
+                             BuildProxy(views, options.proxy_fraction));
+  }
+  analysis->seconds_proxies += SecondsSince(stage_start);
+  std::vector<const ShootingTarget*> targets;
+  for (int t : analysed) targets.push_back((*proxies)[t].target.get());
+  MESHVID_ASSIGN_OR_RETURN(SegmentedMotion segmented,
+                           SegmentFrames(ctx, base, targets, &analysis->summary));
+  std::vector<std::vector<RigidTransform>>& tracks = analysis->tracks;
+  tracks.assign(stop - start, {});
+  for (std::size_t k = 0; k < analysed.size(); ++k) {
+    tracks[analysed[k] - start] = segmented.tracks[k];
+  }
+  // Frames between analysed frames: tracked from the previous frame with the fixed segments.
+  for (int t = start + 1; stride > 1 && t < stop; ++t) {
+    if ((t - start) % stride == 0) continue;
+    if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
+    MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
+    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.proxy_fraction));
+    const auto& previous = tracks[t - start - 1];
+    tracks[t - start] = proxy.target ? TrackSegments(base, segmented.labels,
+                                                     segmented.segment_count, *proxy.target,
+                                                     previous, ctx.seg)
+                                     : previous;
+  }
+  SmoothTracks(options.track_smoothing, &tracks);
+  analysis->motion = BlendWeightsFromLabels(base, segmented.labels, segmented.segment_count,
+                                            /*smoothing=*/4,
+                                            /*soft_from=*/analysis->summary.segments);
+  std::vector<std::vector<RigidTransform>> analysed_tracks;
+  for (int t : analysed) analysed_tracks.push_back(tracks[t - start]);
+  MarkSurface(ctx, base, targets, analysed_tracks, &analysis->motion, &analysis->summary);
+  return segmented;
+}
+
+/// Frames a key group that may be cut is first analysed over: where tracking fails fast,
+/// each key group costs a short segmentation; one that holds is analysed again over
+/// key_group_window frames.
+constexpr int kFirstKeyGroupWindow = 8;
+
+}  // namespace
+
+/// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
+/// `may_cut`, where it ends (the first frame its tracked base no longer explains).
+StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
+                                           ProxyCache* cache) {
+  const EncoderOptions& options = ctx.options;
+  KeyGroupAnalysis analysis;
+  KeyGroupSummary& summary = analysis.summary;
+  summary.first_frame = start;
+  if (!ReportProgress(ctx.progress, "base mesh", start, ctx.end)) return Cancelled();
+  auto stage_start = Clock::now();
+  ProxyCache& proxies = *cache;
+  proxies.erase(proxies.begin(), proxies.lower_bound(start));
+  {
+    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
+    if (!proxies.count(start)) {
+      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.proxy_fraction));
+    }
+    MESHVID_ASSIGN_OR_RETURN(analysis.base,
+                             MakeBaseMesh(ctx, views, proxies[start].target.get()));
+  }
+  const TriangleMesh& base = analysis.base;
+  summary.base_vertices = base.vertex_count();
+  analysis.seconds_base = SecondsSince(stage_start);
+
+  if (!may_cut) {
+    // Every remaining frame, or `window` of them spread evenly, segmented jointly.
+    const int stride = (ctx.end - start + options.window - 1) / options.window;
+    MESHVID_RETURN_IF_ERROR(
+        SegmentKeyGroup(ctx, start, ctx.end, stride, &proxies, &analysis).status());
+    summary.frames = ctx.end - start;
+    return analysis;
+  }
+
+  // Where the key group ends: the first frame its tracked base no longer explains.
+  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
+                           RegularSubdivision::Create(base, std::min(options.levels, 2)));
+  std::vector<std::vector<RigidTransform>>& tracks = analysis.tracks;
+  DataFit key_fit;
+  std::optional<FitMeter> meter;
+  auto explained = [&](int t, const std::vector<Eigen::Vector3f>& points) {
+    const DataFit fit = meter->Measure(tracks[t - start], points);
+    if (!StillExplains(key_fit, fit, options.key_group_threshold)) {
+      summary.cut_unexplained = fit.unexplained_share;
+      return false;
+    }
+    summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
+    return true;
+  };
+  SegmentedMotion segmented;
+  int stop = start;
+  int kept = start;
+  for (const int window : {std::min(kFirstKeyGroupWindow, options.key_group_window),
+                           options.key_group_window}) {
+    if (stop > start && (kept < stop || stop == ctx.end || window <= stop - start)) break;
+    stop = std::min(ctx.end, start + window);
+    MESHVID_ASSIGN_OR_RETURN(segmented,
+                             SegmentKeyGroup(ctx, start, stop, 1, &proxies, &analysis));
+    meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance);
+    key_fit = meter->Measure(tracks[0], proxies[start].points);
+    summary.key_frame_unexplained = key_fit.unexplained_share;
+    summary.worst_unexplained = key_fit.unexplained_share;
+    summary.cut_unexplained = -1;
+    kept = stop;
+    for (int t = start + 1; t < stop; ++t) {
+      if (!explained(t, proxies[t].points)) {
+        kept = t;
+        break;
+      }
+    }
+  }
+  // Past the analysed frames: tracked frame by frame while the base explains the data.
+  for (int t = stop; kept == stop && t < ctx.end; ++t) {
+    if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
+    proxies.erase(proxies.begin(), proxies.lower_bound(t));
+    MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
+    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.proxy_fraction));
+    const FrameProxy& proxy = proxies[t];
+    const std::vector<RigidTransform> previous = tracks.back();
+    tracks.push_back(proxy.target ? TrackSegments(base, segmented.labels,
+                                                  segmented.segment_count, *proxy.target,
+                                                  previous, ctx.seg)
+                                  : previous);
+    if (!explained(t, proxy.points)) {
+      tracks.pop_back();
+      break;
+    }
+    stop = t + 1;
+    kept = stop;
+  }
+  proxies.erase(proxies.begin(), proxies.lower_bound(kept));
+  tracks.resize(kept - start);
+  summary.frames = kept - start;
+  return analysis;
+}
+
+}  // namespace meshvid

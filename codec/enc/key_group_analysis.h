@@ -1,0 +1,83 @@
+// The analysis stages of one key group (internal to the encoder, encoder.cc): the frames'
+// proxies, the key group's base mesh, its piecewise-rigid motion, and where it ends (the first
+// frame its tracked base no longer explains, data_fit.h).
+#ifndef MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_
+#define MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "codec/common/mesh.h"
+#include "codec/common/motion.h"
+#include "codec/common/progress.h"
+#include "codec/enc/encoder.h"
+#include "codec/enc/normal_shooting.h"
+#include "codec/enc/segmentation.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+using Clock = std::chrono::steady_clock;
+
+/// Seconds from `start` to now.
+double SecondsSince(Clock::time_point start);
+
+/// Lengths the options leave at 0, derived from the data's size.
+struct Lengths {
+  float scale = 1;
+  float max_distance = 0, tolerance = 0, detail_max_distance = 0, outlier_distance = 0,
+        base_max_error = 0;
+};
+
+/// A frame's views decimated into one correspondence target, and the target's vertices (the
+/// frame's data points for the key-group fit).
+struct FrameProxy {
+  std::unique_ptr<ShootingTarget> target;  ///< null when the frame has no data
+  std::vector<Eigen::Vector3f> points;
+};
+
+/// Decimates a frame's views into one proxy (fraction: share of each view's vertices kept).
+StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction);
+
+/// Proxies by frame, shared by consecutive key groups (a cut key group's later frames are
+/// the next one's first).
+using ProxyCache = std::map<int, FrameProxy>;
+
+/// The bounding-box diagonal of a frame's views (0 when they are empty).
+float DiagonalOf(const std::vector<TriangleMesh>& views);
+
+/// What every stage of one encode shares.
+struct EncodeContext {
+  const FrameSource& source;
+  const EncoderOptions& options;
+  const ProgressCallback& progress;
+  Lengths lengths;
+  SegmentationOptions seg;
+  int end = 0;  ///< one past the last frame encoded
+};
+
+/// The error a cancelled progress callback ends an encode with.
+Status Cancelled();
+
+/// The analysis of one key group: its base mesh, motion model and the tracks of its frames.
+struct KeyGroupAnalysis {
+  TriangleMesh base;
+  MotionModel motion;
+  std::vector<std::vector<RigidTransform>> tracks;  ///< per frame of the key group
+  KeyGroupSummary summary;
+  double seconds_base = 0, seconds_proxies = 0;
+};
+
+/// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
+/// `may_cut`, where it ends (the first frame its tracked base no longer explains). `cache`
+/// keeps the proxies of frames the next key group may need.
+StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
+                                           ProxyCache* cache);
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_

@@ -1,0 +1,177 @@
+// Key groups in EncodeCapture: a fresh base where the tracked one no longer explains the data,
+// one key group while it does, and --max-key-groups 1 keeping one base.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "codec/dec/mvid_decoder.h"
+#include "codec/enc/data_fit.h"
+#include "codec/enc/encoder.h"
+#include "tests/analytic_mvid.h"
+
+namespace meshvid {
+namespace {
+
+/// Frames held in memory: one closed view per frame.
+class MemoryFrames : public FrameSource {
+ public:
+  explicit MemoryFrames(std::vector<TriangleMesh> frames) : frames_(std::move(frames)) {}
+  int frame_count() const override { return static_cast<int>(frames_.size()); }
+  int view_count() const override { return 1; }
+  double frame_rate() const override { return 25; }
+  StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override {
+    return std::vector<TriangleMesh>{frames_[frame]};
+  }
+
+ private:
+  std::vector<TriangleMesh> frames_;
+};
+
+/// A still ellipsoid and a block (a second ellipsoid) overlapping its end, one surface as the
+/// fusion sees it. The block drifts along x by `drift` a frame and, from frame `jump_frame`
+/// on, sits 0.3 higher (a sixth of the scene's size).
+std::vector<TriangleMesh> TwoBodyFrames(int frames, float drift, int jump_frame) {
+  const TriangleMesh sphere = testing::LatLongSphere(32, 64);
+  const Eigen::Vector3f body(0.6f, 0.25f, 0.25f), block(0.35f, 0.25f, 0.25f);
+  std::vector<TriangleMesh> result;
+  for (int f = 0; f < frames; ++f) {
+    TriangleMesh still = sphere, moving = sphere;
+    const Eigen::Vector3f offset(0.7f + drift * f, f >= jump_frame ? 0.3f : 0.0f, 0);
+    for (auto& p : still.positions) p = p.cwiseProduct(body);
+    for (auto& p : moving.positions) p = p.cwiseProduct(block) + offset;
+    still.normals.clear();
+    moving.normals.clear();
+    TriangleMesh frame;
+    AppendMesh(still, &frame);
+    AppendMesh(moving, &frame);
+    result.push_back(std::move(frame));
+  }
+  return result;
+}
+
+struct Encoded {
+  EncodeSummary summary;
+  std::vector<std::uint8_t> bytes;
+};
+
+Encoded Encode(const std::vector<TriangleMesh>& frames, const EncoderOptions& options) {
+  Encoded encoded;
+  MemoryFrames source(frames);
+  StatusOr<EncodeSummary> summary = EncodeCapture(
+      source,
+      [&](std::span<const std::uint8_t> b) {
+        encoded.bytes.insert(encoded.bytes.end(), b.begin(), b.end());
+        return Status::Ok();
+      },
+      options);
+  EXPECT_TRUE(summary.ok()) << summary.status().ToString();
+  if (summary.ok()) encoded.summary = *summary;
+  return encoded;
+}
+
+EncoderOptions TestOptions() {
+  EncoderOptions options;
+  options.base_vertices = 600;
+  options.codec = VideoCodec::kFfv1;
+  options.gof_size = 4;
+  return options;
+}
+
+/// Root mean square distance from the decoded vertices of every frame to that frame's data
+/// (nearest data vertex; the data is much finer than the decoded mesh).
+std::vector<double> DecodedErrors(const std::vector<std::uint8_t>& bytes,
+                                  const std::vector<TriangleMesh>& frames) {
+  auto decoder = MvidDecoder::OpenMemory(bytes);
+  EXPECT_TRUE(decoder.ok()) << decoder.status().ToString();
+  std::vector<double> errors;
+  if (!decoder.ok()) return errors;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
+    EXPECT_TRUE(mesh.ok()) << mesh.status().ToString();
+    if (!mesh.ok()) return errors;
+    double sum = 0;
+    for (const Eigen::Vector3f& p : mesh->positions) {
+      float nearest = std::numeric_limits<float>::infinity();
+      for (const Eigen::Vector3f& q : frames[f].positions) {
+        nearest = std::min(nearest, (p - q).squaredNorm());
+      }
+      sum += nearest;
+    }
+    errors.push_back(std::sqrt(sum / double(mesh->positions.size())));
+  }
+  return errors;
+}
+
+TEST(DataFit, CountsPointsBeyondTheRepresentableDistance) {
+  const std::vector<Eigen::Vector3f> surface = {{0, 0, 0}, {1, 0, 0}};
+  const std::vector<Eigen::Vector3f> points = {{0, 0.01f, 0}, {1, 0.02f, 0}, {0.5f, 0.6f, 0}};
+  const DataFit fit = MeasureDataFit(surface, points, 0.05f);
+  EXPECT_EQ(fit.points, 3u);
+  EXPECT_NEAR(fit.unexplained_share, 1.0 / 3, 1e-9);
+  EXPECT_TRUE(StillExplains(fit, fit, 0));
+  DataFit worse = fit;
+  worse.unexplained_share += 0.1;
+  EXPECT_FALSE(StillExplains(fit, worse, 0.05));
+  EXPECT_TRUE(StillExplains(fit, worse, 0.2));
+  EXPECT_TRUE(StillExplains(fit, DataFit{}, 0));  // no data: nothing contradicts the motion
+}
+
+TEST(KeyGroups, AJumpStartsANewKeyGroupExactlyThere) {
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(10, 0.01f, 6);
+  const Encoded encoded = Encode(frames, TestOptions());
+  ASSERT_EQ(encoded.summary.key_groups.size(), 2u);
+  EXPECT_EQ(encoded.summary.key_groups[0].first_frame, 0);
+  EXPECT_EQ(encoded.summary.key_groups[0].frames, 6);
+  EXPECT_EQ(encoded.summary.key_groups[1].first_frame, 6);
+  EXPECT_GT(encoded.summary.key_groups[0].cut_unexplained, 0.1);
+  auto decoder = MvidDecoder::OpenMemory(encoded.bytes);
+  ASSERT_TRUE(decoder.ok());
+  ASSERT_EQ((*decoder)->info().key_groups.size(), 2u);
+  EXPECT_EQ((*decoder)->info().key_groups[1].first_frame, 6u);
+  // Both sides of the jump decode close to the data (2% of the 1.8 scene diagonal).
+  const std::vector<double> errors = DecodedErrors(encoded.bytes, frames);
+  ASSERT_EQ(errors.size(), frames.size());
+  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.02) << "frame " << f;
+}
+
+TEST(KeyGroups, ASlowlyMovingSceneStaysOneKeyGroup) {
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(12, 0.005f, /*jump_frame=*/1000);
+  const Encoded encoded = Encode(frames, TestOptions());
+  ASSERT_EQ(encoded.summary.key_groups.size(), 1u);
+  EXPECT_EQ(encoded.summary.key_groups[0].frames, 12);
+  // The data inside the union of the two bodies is never explained, at the key frame either.
+  const KeyGroupSummary& only = encoded.summary.key_groups[0];
+  EXPECT_LT(only.worst_unexplained - only.key_frame_unexplained, 0.02);
+  EXPECT_EQ(only.cut_unexplained, -1);
+}
+
+TEST(KeyGroups, OneKeyGroupAtMostKeepsOneBaseThroughTheJump) {
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(10, 0.01f, 6);
+  EncoderOptions options = TestOptions();
+  options.max_key_groups = 1;
+  const Encoded encoded = Encode(frames, options);
+  ASSERT_EQ(encoded.summary.key_groups.size(), 1u);
+  auto decoder = MvidDecoder::OpenMemory(encoded.bytes);
+  ASSERT_TRUE(decoder.ok());
+  EXPECT_EQ((*decoder)->info().key_groups.size(), 1u);
+  auto first = (*decoder)->DecodeFrame(0, 1);
+  auto last = (*decoder)->DecodeFrame(9, 1);
+  ASSERT_TRUE(first.ok() && last.ok());
+  EXPECT_EQ(first->triangles, last->triangles);
+}
+
+TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {
+  EncoderOptions options = TestOptions();
+  options.key_group_threshold = 1.5;
+  MemoryFrames source(TwoBodyFrames(2, 0, 1000));
+  auto summary = EncodeCapture(source, [](std::span<const std::uint8_t>) { return Status::Ok(); },
+                               options);
+  ASSERT_FALSE(summary.ok());
+  EXPECT_NE(summary.status().message().find("--key-group-threshold"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace meshvid

@@ -1,8 +1,12 @@
 // Tests of the Draco base-mesh coder.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/base_mesh_encoder.h"
+#include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 
 namespace meshvid {
@@ -12,7 +16,7 @@ TEST(BaseMeshCoderTest, RoundTripKeepsTheMeshWithinQuantisation) {
   const TriangleMesh mesh = testing::MakeGridPlane(2.0f, 20, 0.5f);
   BaseMeshEncoding settings;
   settings.position_bits = 14;
-  settings.preserve_order = false;  // edgebreaker
+  settings.allow_reorder = true;  // edgebreaker, whatever order it gives back
   auto encoded = EncodeBaseMesh(mesh, settings);
   ASSERT_TRUE(encoded.ok()) << encoded.status().ToString();
   EXPECT_EQ(encoded->decoded.vertex_count(), mesh.vertex_count());
@@ -36,16 +40,45 @@ TEST(BaseMeshCoderTest, RoundTripKeepsTheMeshWithinQuantisation) {
   EXPECT_EQ(decoded->triangles, encoded->decoded.triangles);
 }
 
-TEST(BaseMeshCoderTest, SequentialCodingKeepsVertexAndTriangleOrder) {
-  const TriangleMesh mesh = testing::MakeGridPlane(2.0f, 20, 0.5f);
-  auto encoded = EncodeBaseMesh(mesh);  // preserve_order is the default
-  ASSERT_TRUE(encoded.ok());
-  ASSERT_EQ(encoded->decoded.vertex_count(), mesh.vertex_count());
-  EXPECT_EQ(encoded->decoded.triangles, mesh.triangles);
+TEST(BaseMeshCoderTest, EdgebreakerOrderIsFoundAgainOrTheOrderIsKept) {
+  const TriangleMesh mesh = testing::SphereMesh(4);
+  BaseMeshEncoding sequential;
+  sequential.try_edgebreaker = false;
+  auto in_order = EncodeBaseMesh(mesh, sequential);
+  ASSERT_TRUE(in_order.ok());
+  EXPECT_TRUE(in_order->vertex_in_decoded.empty());
+  ASSERT_EQ(in_order->decoded.vertex_count(), mesh.vertex_count());
+  EXPECT_EQ(in_order->decoded.triangles, mesh.triangles);
+  const float step = 2.0f / ((1 << 16) - 1);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    EXPECT_LE((encoded->decoded.positions[v] - mesh.positions[v]).cwiseAbs().maxCoeff(),
-              2.0f / (1 << 16));
+    EXPECT_LE((in_order->decoded.positions[v] - mesh.positions[v]).cwiseAbs().maxCoeff(), step);
   }
+  // By default edgebreaker, smaller, with where every vertex and triangle went.
+  auto small = EncodeBaseMesh(mesh);
+  ASSERT_TRUE(small.ok());
+  EXPECT_LT(small->bytes.size(), in_order->bytes.size() / 2);
+  ASSERT_EQ(small->vertex_in_decoded.size(), mesh.vertex_count());
+  ASSERT_EQ(small->triangle_in_decoded.size(), mesh.triangle_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Eigen::Vector3f& moved = small->decoded.positions[small->vertex_in_decoded[v]];
+    EXPECT_LE((moved - mesh.positions[v]).cwiseAbs().maxCoeff(), step);
+  }
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& moved = small->decoded.triangles[small->triangle_in_decoded[t]];
+    std::array<std::uint32_t, 3> expected;
+    for (int c = 0; c < 3; ++c) expected[c] = small->vertex_in_decoded[mesh.triangles[t][c]];
+    std::array<std::uint32_t, 3> got = {moved[0], moved[1], moved[2]};
+    std::sort(expected.begin(), expected.end());
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, expected) << t;
+  }
+  // Vertices closer than a quantisation step cannot be told apart: the order is kept.
+  TriangleMesh twins = mesh;
+  twins.positions[1] = twins.positions[0] + Eigen::Vector3f(1e-7f, 0, 0);
+  auto kept = EncodeBaseMesh(twins);
+  ASSERT_TRUE(kept.ok());
+  EXPECT_TRUE(kept->vertex_in_decoded.empty());
+  EXPECT_EQ(kept->decoded.triangles, twins.triangles);
 }
 
 TEST(BaseMeshCoderTest, DamagedStreamsFailCleanly) {

@@ -107,16 +107,21 @@ std::vector<double> DecodedErrors(const std::vector<std::uint8_t>& bytes,
 
 TEST(DataFit, CountsPointsBeyondTheRepresentableDistance) {
   const std::vector<Eigen::Vector3f> surface = {{0, 0, 0}, {1, 0, 0}};
-  const std::vector<Eigen::Vector3f> points = {{0, 0.01f, 0}, {1, 0.02f, 0}, {0.5f, 0.6f, 0}};
+  const std::vector<Eigen::Vector3f> points = {
+      {0, 0.01f, 0}, {1, 0.02f, 0}, {0, -0.03f, 0}, {1, 0, 0.04f}, {0.5f, 0.6f, 0}};
   const DataFit fit = MeasureDataFit(surface, points, 0.05f);
-  EXPECT_EQ(fit.points, 3u);
-  EXPECT_NEAR(fit.unexplained_share, 1.0 / 3, 1e-9);
+  EXPECT_EQ(fit.points, 5u);
+  EXPECT_NEAR(fit.unexplained_share, 0.2, 1e-9);
   EXPECT_TRUE(StillExplains(fit, fit, 0));
   DataFit worse = fit;
   worse.unexplained_share += 0.1;
   EXPECT_FALSE(StillExplains(fit, worse, 0.05));
   EXPECT_TRUE(StillExplains(fit, worse, 0.2));
   EXPECT_TRUE(StillExplains(fit, DataFit{}, 0));  // no data: nothing contradicts the motion
+  // A key frame whose base missed most of its data excuses at most 25% after it.
+  DataFit failed_fusion = fit;
+  failed_fusion.unexplained_share = 0.9;
+  EXPECT_FALSE(StillExplains(failed_fusion, failed_fusion, 0.02));
 }
 
 TEST(KeyGroups, AJumpStartsANewKeyGroupExactlyThere) {

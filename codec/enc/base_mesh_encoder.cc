@@ -1,6 +1,10 @@
 #include "codec/enc/base_mesh_encoder.h"
 
+#include <array>
+#include <map>
 #include <string>
+
+#include <nanoflann.hpp>
 
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/encode.h>
@@ -11,13 +15,11 @@
 
 namespace meshvid {
 
-StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
-                                         const BaseMeshEncoding& settings) {
-  MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "base mesh"));
-  if (settings.position_bits < 1 || settings.position_bits > 30) {
-    return InvalidArgumentError("base mesh position bits must be in 1..30, got " +
-                                std::to_string(settings.position_bits));
-  }
+namespace {
+
+/// Codes `mesh` with one Draco method and decodes the result.
+StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEncoding& settings,
+                                     bool edgebreaker) {
   draco::Mesh draco_mesh;
   draco_mesh.set_num_points(static_cast<std::uint32_t>(mesh.vertex_count()));
   draco::GeometryAttribute attribute;
@@ -40,8 +42,8 @@ StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, settings.position_bits);
   encoder.SetSpeedOptions(settings.encoding_speed, settings.encoding_speed);
-  encoder.SetEncodingMethod(settings.preserve_order ? draco::MESH_SEQUENTIAL_ENCODING
-                                                    : draco::MESH_EDGEBREAKER_ENCODING);
+  encoder.SetEncodingMethod(edgebreaker ? draco::MESH_EDGEBREAKER_ENCODING
+                                        : draco::MESH_SEQUENTIAL_ENCODING);
   draco::EncoderBuffer buffer;
   const draco::Status status = encoder.EncodeMeshToBuffer(draco_mesh, &buffer);
   if (!status.ok()) return InternalError("Draco cannot encode the base mesh: " +
@@ -51,6 +53,92 @@ StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
   result.bytes.assign(buffer.data(), buffer.data() + buffer.size());
   MESHVID_ASSIGN_OR_RETURN(result.decoded, DecodeBaseMesh(result.bytes));
   return result;
+}
+
+Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings) {
+  MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "base mesh"));
+  if (settings.position_bits < 1 || settings.position_bits > 30) {
+    return InvalidArgumentError("base mesh position bits must be in 1..30, got " +
+                                std::to_string(settings.position_bits));
+  }
+  return Status::Ok();
+}
+
+/// nanoflann's view of decoded positions.
+struct PositionCloud {
+  const std::vector<Eigen::Vector3f>* points;
+  std::size_t kdtree_get_point_count() const { return points->size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][dim]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+/// Finds where Draco put every input vertex and triangle: each input vertex must have exactly
+/// one decoded vertex within a quantisation step, and the triangles must be the same up to
+/// order and rotation. False (nothing filled) otherwise.
+bool MatchDecodedOrder(const TriangleMesh& mesh, int position_bits, EncodedBaseMesh* coded) {
+  const TriangleMesh& decoded = coded->decoded;
+  if (decoded.vertex_count() != mesh.vertex_count() ||
+      decoded.triangle_count() != mesh.triangle_count()) {
+    return false;
+  }
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<
+      nanoflann::L2_Simple_Adaptor<float, PositionCloud>, PositionCloud, 3, std::uint32_t>;
+  const PositionCloud cloud{&decoded.positions};
+  const Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
+  std::vector<std::uint32_t> vertex_in_decoded(mesh.vertex_count());
+  std::vector<char> taken(decoded.vertex_count(), 0);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    std::uint32_t nearest[2] = {0, 0};
+    float squared[2] = {0, 0};
+    const std::size_t found = tree.knnSearch(mesh.positions[v].data(), 2, nearest, squared);
+    // The nearest within a step, and no second candidate as close: unambiguous.
+    if (found == 0 || squared[0] > step * step || (found == 2 && squared[1] <= step * step) ||
+        taken[nearest[0]]) {
+      return false;
+    }
+    taken[nearest[0]] = 1;
+    vertex_in_decoded[v] = nearest[0];
+  }
+  // Triangles as rotated to start at their smallest decoded vertex.
+  auto key = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (b < a && b < c) return std::array<std::uint32_t, 3>{b, c, a};
+    if (c < a && c < b) return std::array<std::uint32_t, 3>{c, a, b};
+    return std::array<std::uint32_t, 3>{a, b, c};
+  };
+  std::map<std::array<std::uint32_t, 3>, std::uint32_t> decoded_triangles;
+  for (std::size_t t = 0; t < decoded.triangle_count(); ++t) {
+    const Triangle& tri = decoded.triangles[t];
+    decoded_triangles[key(tri[0], tri[1], tri[2])] = static_cast<std::uint32_t>(t);
+  }
+  std::vector<std::uint32_t> triangle_in_decoded(mesh.triangle_count());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    const auto it = decoded_triangles.find(key(vertex_in_decoded[tri[0]],
+                                               vertex_in_decoded[tri[1]],
+                                               vertex_in_decoded[tri[2]]));
+    if (it == decoded_triangles.end()) return false;
+    triangle_in_decoded[t] = it->second;
+  }
+  coded->vertex_in_decoded = std::move(vertex_in_decoded);
+  coded->triangle_in_decoded = std::move(triangle_in_decoded);
+  return true;
+}
+
+}  // namespace
+
+StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
+                                         const BaseMeshEncoding& settings) {
+  MESHVID_RETURN_IF_ERROR(CheckSettings(mesh, settings));
+  if (settings.allow_reorder) return EncodeWith(mesh, settings, /*edgebreaker=*/true);
+  if (settings.try_edgebreaker) {
+    StatusOr<EncodedBaseMesh> small = EncodeWith(mesh, settings, /*edgebreaker=*/true);
+    if (small.ok() && MatchDecodedOrder(mesh, settings.position_bits, &*small)) return small;
+  }
+  return EncodeWith(mesh, settings, /*edgebreaker=*/false);
 }
 
 }  // namespace meshvid

@@ -1,5 +1,6 @@
 #include "codec/enc/data_fit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -71,7 +72,8 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
 
 bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold) {
   if (frame.points == 0) return true;
-  return frame.unexplained_share <= key_frame.unexplained_share + threshold;
+  return frame.unexplained_share <=
+         std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold;
 }
 
 }  // namespace meshvid

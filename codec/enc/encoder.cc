@@ -41,6 +41,7 @@ Status CheckOptions(const EncoderOptions& o) {
   }
   if (o.max_key_groups < 0) return bad("--max-key-groups must be >= 0 (0: no limit)");
   if (o.base_vertices < 4) return bad("--base-vertices must be at least 4");
+  if (o.base_fusion_points < 100) return bad("--base-fusion-points must be at least 100");
   if (!(o.proxy_fraction > 0 && o.proxy_fraction <= 1)) {
     return bad("--proxy-fraction must be in (0, 1]");
   }
@@ -102,7 +103,7 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
         return Cancelled();
       }
       MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-      PoseVertices(analysis.motion, decoded_tracks[k], writer->decoded_base().positions, &posed);
+      PoseVertices(writer->motion(), decoded_tracks[k], writer->decoded_base().positions, &posed);
       MESHVID_ASSIGN_OR_RETURN(std::size_t frame_hits,
                                MeasureDisplacements(lattice, posed, views, detail,
                                                     &displacements[k]));

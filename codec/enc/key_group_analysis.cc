@@ -53,14 +53,22 @@ float DiagonalOf(const std::vector<TriangleMesh>& views) {
 
 namespace {
 
-/// Points the fusion of a key frame's views uses for the base mesh.
-constexpr std::size_t kBaseFusionPoints = 20000;
+/// The fit of a frame's points to its unposed base (sampled on lattice level <= 2).
+StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
+                            const std::vector<Eigen::Vector3f>& points, float distance) {
+  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
+                           RegularSubdivision::Create(base, std::min(levels, 2)));
+  std::vector<Eigen::Vector3f> samples, directions;
+  EvaluateSampleFrames(lattice, lattice.levels(), base.positions, ComputeVertexNormals(base),
+                       &samples, &directions);
+  return MeasureDataFit(samples, points, distance);
+}
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
-/// fused views decimated.
+/// fused views (at most `fusion_points` of them) decimated.
 StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
                                     const std::vector<TriangleMesh>& views,
-                                    const ShootingTarget* proxy) {
+                                    const ShootingTarget* proxy, std::size_t fusion_points) {
   const EncoderOptions& options = ctx.options;
   if (options.base_mesh) {
     TriangleMesh base = *options.base_mesh;
@@ -75,10 +83,8 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
     }
     return base;
   }
-  // The base is decimated to a few thousand vertices: a fusion of fewer points is enough
-  // and 3.7x faster (samba frame 30: 1.7 s against 6.4 s, 2000 vertices either way).
   SurfaceFusionOptions fusion_options;
-  fusion_options.max_points = kBaseFusionPoints;
+  fusion_options.max_points = fusion_points;
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));
   DecimationOptions decimation;
   decimation.target_vertices = options.base_vertices;
@@ -250,6 +256,32 @@ constexpr int kFirstKeyGroupWindow = 8;
 
 }  // namespace
 
+/// The base of a key frame: fused from few points first (fast); redone from the fusion's
+/// default number of points when that fails or explains too little of the frame.
+StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
+                                        const std::vector<TriangleMesh>& views,
+                                        const FrameProxy& proxy) {
+  const SurfaceFusionOptions defaults;
+  const std::size_t fast = std::min(ctx.options.base_fusion_points, defaults.max_points);
+  StatusOr<TriangleMesh> base = MakeBaseMesh(ctx, views, proxy.target.get(), fast);
+  if (ctx.options.base_mesh || fast >= defaults.max_points) return base;
+  double unexplained = 1;
+  if (base.ok()) {
+    MESHVID_ASSIGN_OR_RETURN(const DataFit fit, FitOfBase(*base, ctx.options.levels, proxy.points,
+                                                          ctx.lengths.detail_max_distance));
+    unexplained = fit.unexplained_share;
+    if (unexplained <= kMostUnexplainedAtKeyFrame) return base;
+  }
+  StatusOr<TriangleMesh> careful =
+      MakeBaseMesh(ctx, views, proxy.target.get(), defaults.max_points);
+  if (!careful.ok()) return base.ok() ? base : careful;
+  if (!base.ok()) return careful;
+  MESHVID_ASSIGN_OR_RETURN(const DataFit fit, FitOfBase(*careful, ctx.options.levels,
+                                                        proxy.points,
+                                                        ctx.lengths.detail_max_distance));
+  return fit.unexplained_share < unexplained ? careful : base;
+}
+
 /// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains).
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
@@ -267,8 +299,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!proxies.count(start)) {
       MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.proxy_fraction));
     }
-    MESHVID_ASSIGN_OR_RETURN(analysis.base,
-                             MakeBaseMesh(ctx, views, proxies[start].target.get()));
+    MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
   const TriangleMesh& base = analysis.base;
   summary.base_vertices = base.vertex_count();

@@ -47,14 +47,24 @@ Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& mo
   if (base_coded.decoded.vertex_count() != base.vertex_count()) {
     return InternalError("the base mesh coder changed the vertex count");
   }
+  // The motion in the decoder's vertex and triangle order.
+  MotionModel ordered = motion;
+  if (!base_coded.vertex_in_decoded.empty()) {
+    for (std::size_t v = 0; v < motion.blends.size(); ++v) {
+      ordered.blends[base_coded.vertex_in_decoded[v]] = motion.blends[v];
+    }
+    for (std::size_t t = 0; t < motion.surface_triangles.size(); ++t) {
+      ordered.surface_triangles[base_coded.triangle_in_decoded[t]] = motion.surface_triangles[t];
+    }
+  }
   MESHVID_ASSIGN_OR_RETURN(RegularSubdivision subdivision,
                            RegularSubdivision::Create(base_coded.decoded, settings_.levels));
   MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes,
-                           EncodeMotionModel(motion, settings_.motion));
+                           EncodeMotionModel(ordered, settings_.motion));
   decoded_base_ = std::move(base_coded.decoded);
   subdivision_ = std::move(subdivision);
   layout_ = DisplacementLayout::ForSubdivision(subdivision_, settings_.packing);
-  motion_ = motion;
+  motion_ = std::move(ordered);
   if (key_groups_ == 0) MESHVID_RETURN_IF_ERROR(BeginContainer());
   MESHVID_RETURN_IF_ERROR(container_->WriteBase(base_coded.bytes));
   MESHVID_RETURN_IF_ERROR(container_->WriteMotion(motion_bytes));

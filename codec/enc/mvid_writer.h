@@ -59,7 +59,8 @@ class MvidWriter {
                                                       const MvidWriterSettings& settings);
 
   /// Starts the next key group: codes `base` and `motion` (one blend per base vertex); the
-  /// groups written after it use them. The current key group must hold a group already.
+  /// groups written after it use them. Use decoded_base() and motion() from here on: Draco may
+  /// renumber the base's vertices and triangles. The current key group must hold a group already.
   Status StartKeyGroup(const TriangleMesh& base, const MotionModel& motion);
   /// Key groups started so far.
   int key_group_count() const { return key_groups_; }
@@ -67,6 +68,9 @@ class MvidWriter {
   /// The current key group's base mesh as a decoder reconstructs it (Draco-quantised
   /// positions, same order).
   const TriangleMesh& decoded_base() const { return decoded_base_; }
+  /// The current key group's motion model in decoded_base()'s order (Draco may renumber the
+  /// base: the model given to StartKeyGroup, its blends and mask moved accordingly).
+  const MotionModel& motion() const { return motion_; }
   /// The current key group's displacement lattice; displacement fields hold samples() in its
   /// order.
   const RegularSubdivision& subdivision() const { return subdivision_; }

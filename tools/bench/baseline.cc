@@ -61,7 +61,7 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
   }
   BaseMeshEncoding encoding;
   encoding.encoding_speed = options.draco_speed;
-  encoding.preserve_order = false;  // edgebreaker: what a per-frame player streams
+  encoding.allow_reorder = true;  // edgebreaker: what a per-frame player streams
   MeshWriteOptions write_options;
   write_options.write_normals = false;
 

@@ -216,6 +216,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "filled together); a key group that may not be cut and is longer is "
                   "segmented on this many frames spread over it and then tracked")
       ->capture_default_str();
+  cmd->add_option("--base-fusion-points", o.base_fusion_points,
+                  "Points a key frame's fusion keeps for its base (fewer: faster; a fusion that "
+                  "fails or explains under 75% of its frame is redone at 60000)")
+      ->capture_default_str();
   cmd->add_option("--key-group-threshold", o.key_group_threshold,
                   "Start a new key group (a fresh base fused from that frame) where the share "
                   "of captured points the tracked base cannot reach (farther than the "

@@ -8,6 +8,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "format/validate.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 
 namespace meshvid::cli {
@@ -57,10 +58,32 @@ int RunInfo(const InfoArguments& args) {
     bar.Finish();
     if (!decoded.ok()) return ReportError(decoded.WithContext(args.file));
   }
+  // Every key group's base size and bytes (each one's BASE and MOTN are decoded once).
+  std::vector<MvidKeyGroupInfo> key_groups;
+  for (std::uint32_t k = 0; k < info.key_groups.size(); ++k) {
+    StatusOr<MvidKeyGroupInfo> described = (*decoder)->DescribeKeyGroup(k);
+    if (!described.ok()) return ReportError(described.status());
+    key_groups.push_back(*std::move(described));
+  }
   const double frames = std::max<double>(1, info.frame_count);
   const double bytes_per_frame = info.file_bytes / frames;
   const double mbits = bytes_per_frame * 8 * info.frame_rate / 1e6;
   if (args.json) {
+    nlohmann::json key_group_list = nlohmann::json::array();
+    for (std::size_t k = 0; k < key_groups.size(); ++k) {
+      const MvidKeyGroupInfo& g = key_groups[k];
+      key_group_list.push_back({{"first_frame", g.span.first_frame},
+                                {"frames", g.span.frame_count},
+                                {"groups", g.span.gof_count},
+                                {"base", {{"vertices", g.base_vertices},
+                                          {"triangles", g.base_triangles}}},
+                                {"segments", g.segments},
+                                {"picture", {{"width", g.picture_width},
+                                             {"height", g.picture_height}}},
+                                {"vertices_per_level", g.vertices_per_level},
+                                {"triangles_per_level", g.triangles_per_level},
+                                {"bytes", sizes->key_group_bytes[k]}});
+    }
     nlohmann::json j = {
         {"file", args.file},
         {"frames", info.frame_count},
@@ -70,14 +93,16 @@ int RunInfo(const InfoArguments& args) {
         {"frames_per_group", info.gof_size},
         {"levels", info.levels},
         {"indexed", info.indexed},
+        {"format_version", info.format_version},
+        {"key_groups", key_group_list},
         {"codec", std::string(VideoCodecName(info.codec))},
         {"picture", {{"width", info.picture_width}, {"height", info.picture_height}}},
         {"base", {{"vertices", info.base_vertices}, {"triangles", info.base_triangles}}},
         {"segments", info.segments},
         {"bytes",
          {{"file", info.file_bytes},
-          {"base_mesh", info.base_bytes},
-          {"motion_model", info.motion_bytes},
+          {"base_mesh", sizes->base_bytes},
+          {"motion_model", sizes->motion_bytes},
           {"transforms", sizes->transform_bytes},
           {"video", sizes->video_bytes},
           {"per_frame", bytes_per_frame}}},
@@ -87,23 +112,33 @@ int RunInfo(const InfoArguments& args) {
         {"checked", args.check},
         {"metadata", nlohmann::json::parse(info.metadata_json.empty() ? "{}" : info.metadata_json,
                                            nullptr, /*allow_exceptions=*/false)}};
-    std::printf("%s\n", j.dump(2).c_str());
+    std::printf("%s\n", DumpJson(j, 2).c_str());
     return 0;
   }
   std::printf("%s: %u frames at %.3g fps (%.2f s) in %u groups of up to %u frames%s\n",
               args.file.c_str(), info.frame_count, info.frame_rate,
               info.frame_count / info.frame_rate, info.gof_count, info.gof_size,
               info.indexed ? "" : " (no index: groups found by scanning)");
-  std::printf("  base mesh      %zu vertices, %zu triangles, %s (Draco)\n", info.base_vertices,
-              info.base_triangles, Kilobytes(info.base_bytes).c_str());
-  std::printf("  motion         %u segments: blend weights %s, transforms %s\n", info.segments,
-              Kilobytes(info.motion_bytes).c_str(), Kilobytes(sizes->transform_bytes).c_str());
+  std::printf("  key groups     %zu (a base mesh each; the same triangles within each)\n",
+              key_groups.size());
+  std::printf("  base mesh      %zu vertices, %zu triangles in key group 0; all bases %s (Draco)\n",
+              info.base_vertices, info.base_triangles, Kilobytes(sizes->base_bytes).c_str());
+  std::printf("  motion         %u segments in key group 0: blend weights %s, transforms %s\n",
+              info.segments, Kilobytes(sizes->motion_bytes).c_str(),
+              Kilobytes(sizes->transform_bytes).c_str());
   std::printf("  displacements  %s 10-bit %dx%d, %s\n",
               std::string(VideoCodecName(info.codec)).c_str(), info.picture_width,
               info.picture_height, Kilobytes(sizes->video_bytes).c_str());
   std::printf("  total          %s = %.0f bytes per frame = %.3f Mbit/s at %.3g fps\n",
               Kilobytes(info.file_bytes).c_str(), bytes_per_frame, mbits, info.frame_rate);
-  std::printf("  level  vertices  triangles\n");
+  std::printf("  key group  first frame  frames  base vertices  segments  bytes\n");
+  for (std::size_t k = 0; k < key_groups.size(); ++k) {
+    const MvidKeyGroupInfo& g = key_groups[k];
+    std::printf("  %9zu  %11u  %6u  %13zu  %8u  %s\n", k, g.span.first_frame,
+                g.span.frame_count, g.base_vertices, g.segments,
+                Kilobytes(sizes->key_group_bytes[k]).c_str());
+  }
+  std::printf("  level  vertices  triangles (key group 0)\n");
   for (int level = 0; level <= info.levels; ++level) {
     std::printf("  %5d  %8zu  %9zu\n", level, info.vertices_per_level[level],
                 info.triangles_per_level[level]);

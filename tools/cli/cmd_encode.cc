@@ -19,20 +19,26 @@
 namespace meshvid::cli {
 namespace {
 
-/// The capture as the encoder's frame source.
+/// The capture as the encoder's frame source. The encoder reads a frame several times (its
+/// proxy, a key group's base, its detail): the last kCachedFrames frames stay parsed.
 class CaptureFrameSource : public FrameSource {
  public:
+  /// Parsed frames kept: a short key group is analysed and detailed within them (samba's
+  /// 3 views at 640x480: about 15 MB a frame).
+  static constexpr int kCachedFrames = 12;
   explicit CaptureFrameSource(std::unique_ptr<CaptureSequence> capture)
-      : capture_(std::move(capture)) {}
+      : capture_(std::move(capture)), window_(capture_.get(), kCachedFrames) {}
   int frame_count() const override { return capture_->frame_count(); }
   int view_count() const override { return capture_->view_count(); }
   double frame_rate() const override { return capture_->info().frame_rate; }
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override {
-    return capture_->LoadFrame(frame);
+    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh>* views, window_.Get(frame));
+    return *views;
   }
 
  private:
   std::unique_ptr<CaptureSequence> capture_;
+  mutable CaptureWindow window_;
 };
 
 struct EncodeArguments {

@@ -102,7 +102,7 @@ struct SegmentedMotion {
   std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
 };
 
-StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const TriangleMesh& base,
+StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopology& base,
                                         const std::vector<const ShootingTarget*>& targets,
                                         KeyGroupSummary* summary) {
   const EncoderOptions& options = ctx.options;
@@ -118,7 +118,7 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const Triangle
   summary->segments = segmentation.segment_count;
   std::size_t registered = 0;
   for (std::int32_t label : segmentation.labels) registered += label >= 0;
-  summary->registered_share = double(registered) / double(base.vertex_count());
+  summary->registered_share = double(registered) / double(base.mesh.vertex_count());
   result.labels = segmentation.labels;
   result.segment_count = segmentation.segment_count;
   if (options.patch_vertices > 0) {
@@ -199,7 +199,8 @@ class FitMeter {
 /// The motion of a key group's base over frames [start, stop): every `stride`-th frame
 /// segmented jointly (proxies cached), the others tracked from the previous frame. Fills the
 /// analysis' motion, tracks (stop - start of them) and segment figures.
-StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx, int start, int stop,
+StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
+                                          const BaseTopology& topology, int start, int stop,
                                           int stride, ProxyCache* proxies,
                                           KeyGroupAnalysis* analysis) {
   const EncoderOptions& options = ctx.options;
@@ -221,7 +222,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx, int start, i
   std::vector<const ShootingTarget*> targets;
   for (int t : analysed) targets.push_back((*proxies)[t].target.get());
   MESHVID_ASSIGN_OR_RETURN(SegmentedMotion segmented,
-                           SegmentFrames(ctx, base, targets, &analysis->summary));
+                           SegmentFrames(ctx, topology, targets, &analysis->summary));
   std::vector<std::vector<RigidTransform>>& tracks = analysis->tracks;
   tracks.assign(stop - start, {});
   for (std::size_t k = 0; k < analysed.size(); ++k) {
@@ -234,13 +235,14 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx, int start, i
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.proxy_fraction));
     const auto& previous = tracks[t - start - 1];
-    tracks[t - start] = proxy.target ? TrackSegments(base, segmented.labels,
+    tracks[t - start] = proxy.target ? TrackSegments(topology, segmented.labels,
                                                      segmented.segment_count, *proxy.target,
                                                      previous, ctx.seg)
                                      : previous;
   }
   SmoothTracks(options.track_smoothing, &tracks);
-  analysis->motion = BlendWeightsFromLabels(base, segmented.labels, segmented.segment_count,
+  analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
+                                            segmented.segment_count,
                                             /*smoothing=*/4,
                                             /*soft_from=*/analysis->summary.segments);
   std::vector<std::vector<RigidTransform>> analysed_tracks;
@@ -302,6 +304,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
   const TriangleMesh& base = analysis.base;
+  const BaseTopology topology(base);  // one-rings and normals, once per key group
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start);
 
@@ -309,7 +312,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     // Every remaining frame, or `window` of them spread evenly, segmented jointly.
     const int stride = (ctx.end - start + options.window - 1) / options.window;
     MESHVID_RETURN_IF_ERROR(
-        SegmentKeyGroup(ctx, start, ctx.end, stride, &proxies, &analysis).status());
+        SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis).status());
     summary.frames = ctx.end - start;
     return analysis;
   }
@@ -337,7 +340,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (stop > start && (kept < stop || stop == ctx.end || window <= stop - start)) break;
     stop = std::min(ctx.end, start + window);
     MESHVID_ASSIGN_OR_RETURN(segmented,
-                             SegmentKeyGroup(ctx, start, stop, 1, &proxies, &analysis));
+                             SegmentKeyGroup(ctx, topology, start, stop, 1, &proxies, &analysis));
     meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance);
     key_fit = meter->Measure(tracks[0], proxies[start].points);
     summary.key_frame_unexplained = key_fit.unexplained_share;
@@ -359,7 +362,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.proxy_fraction));
     const FrameProxy& proxy = proxies[t];
     const std::vector<RigidTransform> previous = tracks.back();
-    tracks.push_back(proxy.target ? TrackSegments(base, segmented.labels,
+    tracks.push_back(proxy.target ? TrackSegments(topology, segmented.labels,
                                                   segmented.segment_count, *proxy.target,
                                                   previous, ctx.seg)
                                   : previous);

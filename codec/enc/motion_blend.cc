@@ -27,12 +27,14 @@ VertexBlend TopInfluences(std::span<const float> weights) {
 
 }  // namespace
 
-MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
-                                   int segment_count, int smoothing, int soft_from) {
+MotionModel BlendWeightsFromLabels(const BaseTopology& topology,
+                                   std::span<const std::int32_t> labels, int segment_count,
+                                   int smoothing, int soft_from) {
+  const TriangleMesh& base = topology.mesh;
   if (soft_from < 0) soft_from = segment_count;
   const std::size_t n = base.vertex_count();
   const std::size_t s = static_cast<std::size_t>(std::max(1, segment_count));
-  const auto neighbours = VertexNeighbours(base);
+  const auto& neighbours = topology.neighbours;
   std::vector<float> weights(n * s, 0.0f);
   std::vector<char> known(n, 0), registered(n, 0);
   for (std::size_t v = 0; v < n; ++v) {

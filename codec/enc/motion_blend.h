@@ -11,6 +11,7 @@
 
 #include "codec/common/mesh.h"
 #include "codec/common/motion.h"
+#include "codec/enc/base_topology.h"
 
 namespace meshvid {
 
@@ -21,7 +22,7 @@ namespace meshvid {
 /// vertex take the segment of the nearest registered vertex in space. Vertices of segments
 /// `soft_from` and above (the patches of patch_tracking.h; -1: none) start with their segment
 /// and are smoothed like the interpolated ones, so patches blend into their neighbours.
-MotionModel BlendWeightsFromLabels(const TriangleMesh& base, std::span<const std::int32_t> labels,
+MotionModel BlendWeightsFromLabels(const BaseTopology& base, std::span<const std::int32_t> labels,
                                    int segment_count, int smoothing = 4, int soft_from = -1);
 
 /// Smooths tracks `transforms[frame][segment]` over time: `passes` times, each frame's

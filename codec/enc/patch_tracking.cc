@@ -155,12 +155,14 @@ void JointStep(const TriangleMesh& base, const PatchLayout& layout, const Shooti
 
 }  // namespace
 
-int PartitionUnregistered(const TriangleMesh& base, int segment_count, int min_patch_vertices,
-                          const PatchTrackingOptions& options, std::vector<std::int32_t>* labels) {
+int PartitionUnregistered(const BaseTopology& topology, int segment_count,
+                          int min_patch_vertices, const PatchTrackingOptions& options,
+                          std::vector<std::int32_t>* labels) {
+  const TriangleMesh& base = topology.mesh;
   const std::size_t n = base.vertex_count();
   const int budget = options.max_segments - segment_count;
   if (budget <= 0 || options.patch_vertices < 1) return segment_count;
-  const auto neighbours = VertexNeighbours(base);
+  const auto& neighbours = topology.neighbours;
   // Connected regions of unregistered vertices.
   std::vector<std::int32_t> region(n, -1);
   std::vector<std::vector<std::uint32_t>> regions;
@@ -232,11 +234,12 @@ int PartitionUnregistered(const TriangleMesh& base, int segment_count, int min_p
   return next;
 }
 
-Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& labels,
+Status TrackPatches(const BaseTopology& topology, const std::vector<std::int32_t>& labels,
                     int fixed_count, int total_count, FrameTargets targets,
                     const SegmentationOptions& seg, const PatchTrackingOptions& options,
                     std::vector<std::vector<RigidTransform>>* transforms,
                     const ProgressCallback& progress) {
+  const TriangleMesh& base = topology.mesh;
   if (transforms->size() != targets.size()) {
     return InvalidArgumentError("patch tracking: " + std::to_string(transforms->size()) +
                                 " frames of transforms for " + std::to_string(targets.size()) +
@@ -262,7 +265,7 @@ Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& l
     layout.centres.push_back(centre);
     layout.radii.push_back(std::sqrt(spread / double(std::max<std::size_t>(1, members.size()))));
   }
-  const auto neighbours = VertexNeighbours(base);
+  const auto& neighbours = topology.neighbours;
   for (std::uint32_t u = 0; u < neighbours.size(); ++u) {
     for (std::uint32_t w : neighbours[u]) {
       const std::int32_t a = labels[u], b = labels[w];
@@ -271,7 +274,7 @@ Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& l
       layout.seams.push_back({u, w, a, b});
     }
   }
-  layout.normals = ComputeVertexNormals(base);
+  layout.normals = topology.normals;
 
   const int frames = static_cast<int>(targets.size());
   for (int k = 1; k < frames; ++k) {
@@ -300,9 +303,10 @@ Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& l
   return Status::Ok();
 }
 
-int MergePatchesIntoSegments(const TriangleMesh& base, int fixed_count, int total_count,
+int MergePatchesIntoSegments(const BaseTopology& topology, int fixed_count, int total_count,
                              const SegmentationOptions& seg, std::vector<std::int32_t>* labels,
                              std::vector<std::vector<RigidTransform>>* transforms) {
+  const TriangleMesh& base = topology.mesh;
   const int patches = total_count - fixed_count;
   if (patches <= 0 || fixed_count <= 0) return total_count;
   std::vector<std::vector<std::uint32_t>> members(patches);
@@ -310,7 +314,7 @@ int MergePatchesIntoSegments(const TriangleMesh& base, int fixed_count, int tota
     const std::int32_t l = (*labels)[v];
     if (l >= fixed_count && l < total_count) members[l - fixed_count].push_back(v);
   }
-  const auto neighbours = VertexNeighbours(base);
+  const auto& neighbours = topology.neighbours;
   // Passes until nothing joins: a patch joining a segment makes the segment adjacent to
   // the patches beyond it.
   std::vector<std::int32_t> target(patches, -1);

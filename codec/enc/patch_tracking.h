@@ -34,7 +34,7 @@ struct PatchTrackingOptions {
 /// `min_patch_vertices` stay unregistered; at most options.max_segments - segment_count
 /// patches are made (regions get patches in proportion to their size). Returns the new
 /// segment count.
-int PartitionUnregistered(const TriangleMesh& base, int segment_count, int min_patch_vertices,
+int PartitionUnregistered(const BaseTopology& base, int segment_count, int min_patch_vertices,
                           const PatchTrackingOptions& options, std::vector<std::int32_t>* labels);
 
 /// Tracks patches fixed_count..total_count-1 of `labels` through `targets` (one per frame,
@@ -43,7 +43,7 @@ int PartitionUnregistered(const TriangleMesh& base, int segment_count, int min_p
 /// patches' appended. Each frame starts from a constant-velocity prediction and alternates
 /// correspondences (normal shooting, the tolerance shrinking from the search distance to
 /// seg.tolerance) with one joint Gauss-Newton step of all patches.
-Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& labels,
+Status TrackPatches(const BaseTopology& base, const std::vector<std::int32_t>& labels,
                     int fixed_count, int total_count, FrameTargets targets,
                     const SegmentationOptions& seg, const PatchTrackingOptions& options,
                     std::vector<std::vector<RigidTransform>>* transforms,
@@ -53,7 +53,7 @@ Status TrackPatches(const TriangleMesh& base, const std::vector<std::int32_t>& l
 /// (s < fixed_count) whose members both tracks put within seg.tolerance (RMS) of each other
 /// in all but seg.occlusion_frames frames is relabelled s. The remaining patches are
 /// renumbered from fixed_count and `transforms` shrinks to match. Returns the new count.
-int MergePatchesIntoSegments(const TriangleMesh& base, int fixed_count, int total_count,
+int MergePatchesIntoSegments(const BaseTopology& base, int fixed_count, int total_count,
                              const SegmentationOptions& seg, std::vector<std::int32_t>* labels,
                              std::vector<std::vector<RigidTransform>>* transforms);
 

@@ -507,9 +507,11 @@ std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mes
   return neighbours;
 }
 
-StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTargets targets,
+StatusOr<Segmentation> SegmentPiecewiseRigid(const BaseTopology& topology,
+                                             FrameTargets targets,
                                              const SegmentationOptions& options,
                                              const ProgressCallback& progress) {
+  const TriangleMesh& base = topology.mesh;
   MESHVID_RETURN_IF_ERROR(ValidateMesh(base, "base mesh"));
   if (targets.empty()) return InvalidArgumentError("segmentation needs at least one frame");
   if (!(options.tolerance > 0)) return InvalidArgumentError("the tolerance must be positive");
@@ -522,8 +524,8 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
       options.seed_vertices > 0
           ? std::size_t(options.seed_vertices)
           : std::max<std::size_t>(std::size_t(3 * min_size), n / kAutoSeedDivisor);
-  SegmentContext context{BaseFrame{base.positions, ComputeVertexNormals(base)},
-                         VertexNeighbours(base), targets, options};
+  SegmentContext context{BaseFrame{base.positions, topology.normals}, topology.neighbours,
+                         targets, options};
   std::vector<std::vector<RigidTransform>> segment_tracks;
   const int frames_with_data = static_cast<int>(
       std::count_if(targets.begin(), targets.end(), [](const auto* t) { return t != nullptr; }));
@@ -608,12 +610,12 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
   return result;
 }
 
-std::vector<RigidTransform> TrackSegments(const TriangleMesh& base,
+std::vector<RigidTransform> TrackSegments(const BaseTopology& base,
                                           std::span<const std::int32_t> labels,
                                           int segment_count, const ShootingTarget& target,
                                           std::span<const RigidTransform> initial,
                                           const SegmentationOptions& options) {
-  BaseFrame frame{base.positions, ComputeVertexNormals(base)};
+  BaseFrame frame{base.mesh.positions, base.normals};
   std::vector<std::vector<std::uint32_t>> members(segment_count);
   for (std::uint32_t v = 0; v < labels.size(); ++v) {
     if (labels[v] >= 0 && labels[v] < segment_count) members[labels[v]].push_back(v);

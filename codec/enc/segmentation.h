@@ -13,6 +13,7 @@
 #include "codec/common/mesh.h"
 #include "codec/common/motion.h"
 #include "codec/common/progress.h"
+#include "codec/enc/base_topology.h"
 #include "codec/enc/normal_shooting.h"
 #include "format/status.h"
 
@@ -56,7 +57,7 @@ struct Segmentation {
 /// seed vertex (the middle of the largest region still free and seen in the first frame with
 /// data), is tracked through the frames, then grows over every unsegmented vertex that
 /// follows its track. Reports progress per segment attempt.
-StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTargets targets,
+StatusOr<Segmentation> SegmentPiecewiseRigid(const BaseTopology& base, FrameTargets targets,
                                              const SegmentationOptions& options,
                                              const ProgressCallback& progress = {});
 
@@ -64,14 +65,12 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const TriangleMesh& base, FrameTarg
 /// segment's transform on its members' correspondences in `target` (a fine and a coarse
 /// search). A segment whose solve is not believable (too few members agree, or it jumped or
 /// turned too far) keeps its initial transform.
-std::vector<RigidTransform> TrackSegments(const TriangleMesh& base,
+std::vector<RigidTransform> TrackSegments(const BaseTopology& base,
                                           std::span<const std::int32_t> labels,
                                           int segment_count, const ShootingTarget& target,
                                           std::span<const RigidTransform> initial,
                                           const SegmentationOptions& options);
 
-/// Per base vertex, the triangles' vertex adjacency (sorted, unique neighbours).
-std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mesh);
 
 }  // namespace meshvid
 

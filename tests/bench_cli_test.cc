@@ -3,13 +3,16 @@
 // takes minutes; its orchestration is tested with a fake executable in bench_runner_test.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "tests/bench_fake_records.h"
 #include "tests/test_util.h"
 #include "tools/bench/baseline.h"
+#include "tools/bench/eval_figures.h"
 
 namespace meshvid {
 namespace {
@@ -66,6 +69,45 @@ TEST(BenchCliTest, ReportOnlyWritesResultsMarkdownFromRecords) {
   EXPECT_NE(md.find("| fake | 3-arc | -50.0% (HEVC L1) not met"), std::string::npos) << md;
   EXPECT_NE(md.find("(No plot: plots were not drawn (--no-plots))"), std::string::npos);
   EXPECT_NE(md.find("meshvid bench -o "), std::string::npos);
+}
+
+TEST(BenchCliTest, ReportOnlyFillsPerFrameFiguresFromTheEvalJsonInTheWorkFolder) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string results = dir.File("bench/results");
+  std::filesystem::create_directories(results + "/tmp/fake-3-arc");
+  // Two records written before the per-frame figures; the work folder (OUT/tmp) still holds
+  // the eval JSON of fake-3-arc's default point and baseline best, none of fake-6-ring's.
+  const std::string older = testing::RecordJsonWithoutFrameFigures();
+  testing::WriteFile(results + "/fake-3-arc.json", older);
+  std::string ring = older;
+  const std::string arc = "\"rig\": \"3-arc\"";
+  ring.replace(ring.find(arc), arc.size(), "\"rig\": \"6-ring\"");
+  testing::WriteFile(results + "/fake-6-ring.json", ring);
+  BenchRecord complete = testing::FakeRecord();
+  for (const auto& [method, codec, quality, level] :
+       {std::tuple{kMethodMeshvid, "hevc", 40, 1}, std::tuple{kMethodBaseline, "draco", 14, -1}}) {
+    const BenchPoint* p = FindPoint(complete, method, codec, quality, level);
+    ASSERT_NE(p, nullptr);
+    testing::WriteFile(EvalJsonPath(results + "/tmp", complete, *p), testing::FakeEvalJson(*p));
+  }
+  const testing::CliRun run =
+      testing::RunMeshvid("bench --report-only --no-plots -o \"" + results + "\"", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("Per-frame figures of 2 point(s) read from their eval JSON"),
+            std::string::npos)
+      << run.err;
+  const std::string md = testing::ReadFile(dir.File("bench/RESULTS.md"));
+  EXPECT_NE(md.find("| fake | 3-arc | HEVC q40 L1 | 14 bits | 9/10 (90.0%) missed | 7: 1.55x "
+                    "(3.1 vs 2) | 35.00 vs 45.00 dB missed |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| fake | 6-ring | HEVC q40 L1 | 14 bits | n/a (no per-frame figures) | n/a | "
+                    "35.00 vs 45.00 dB missed |"),
+            std::string::npos)
+      << md;
+  // The records themselves are left as they were (the next bench run completes them).
+  EXPECT_EQ(testing::ReadFile(results + "/fake-3-arc.json"), older);
 }
 
 TEST(BenchCliTest, DecodeNoWriteReportsSpeedAndWritesNothing) {
@@ -128,10 +170,22 @@ TEST(BenchCliTest, BaselineCodesEveryFrameAtEverySetting) {
   EXPECT_NE(run.err.find("no .drc file"), std::string::npos) << run.err;
   // The decoded frames are a mesh sequence `meshvid eval` reads.
   run = testing::RunMeshvid("eval --ref \"" + cap + "/ground_truth.obj\" --test \"" +
-                                dir.File("base/b12/f{frame:04}.ply") + "\" --samples 2000 -q",
+                                dir.File("base/b12/f{frame:04}.ply") +
+                                "\" --samples 2000 --json \"" + dir.File("e.json") + "\" -q",
                             dir);
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("mean"), std::string::npos);
+  // The bench reads the per-frame figures of meshvid eval's JSON.
+  auto figures = ParseEvalFigures(testing::ReadFile(dir.File("e.json")), "e.json");
+  ASSERT_TRUE(figures.ok()) << figures.status().ToString();
+  EXPECT_EQ(figures->frames, 2);
+  ASSERT_EQ(figures->frame_accuracy_rms.size(), 2u);
+  ASSERT_EQ(figures->frame_d1_psnr.size(), 2u);
+  for (int t = 0; t < 2; ++t) {
+    EXPECT_GT(figures->frame_accuracy_rms[t], 0.0);
+    EXPECT_TRUE(std::isfinite(figures->frame_d1_psnr[t]));
+  }
+  EXPECT_TRUE(std::isfinite(figures->d1_psnr_mean_of_frames));
 }
 
 }  // namespace

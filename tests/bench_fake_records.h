@@ -1,15 +1,17 @@
 // A small fake set of bench records for the bench_* tests: a baseline of four Draco points
 // and meshvid HEVC at exactly half the baseline's rate at every PSNR, plus one lossless point
-// and a failed step.
+// and a failed step; per-frame figures, and the eval JSON they come from.
 #ifndef MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
 #define MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
 
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "tools/bench/bench_divergence.h"
 #include "tools/bench/bench_record.h"
 
 namespace meshvid::testing {
@@ -20,6 +22,12 @@ namespace meshvid::testing {
 /// encode. The PSNRs above are the means of frames; the PSNRs of the mean MSE are lower, by
 /// 1 dB for the baseline and 4 dB for meshvid (as if it had a few bad frames), so a BD-rate on
 /// them would differ.
+///
+/// Per-frame figures (10 frames) of every point but the lossless one: the baseline's accuracy
+/// RMS is 0.002 on every frame; meshvid's 0.0022 (1.1x) but on frame 7, 0.0031 (1.55x); each
+/// frame's D1 PSNR is the point's mean of frames. So the divergence check (default point HEVC
+/// q40 at level 1, its finest; baseline best: 14 bits, 45 dB) finds 9 of 10 frames within
+/// 1.25x (missed), frame 7 the worst, and 35 against 45 dB (missed).
 inline BenchRecord FakeRecord() {
   BenchRecord r;
   r.sequence = "fake";
@@ -64,6 +72,8 @@ inline BenchRecord FakeRecord() {
     p.encode_fps = 0.4;
     p.encode_peak_mb = p.decode_peak_mb = 250;
     p.commands = {r.baseline_command};
+    p.frame_accuracy_rms.assign(10, 0.002);
+    p.frame_d1_psnr.assign(10, psnrs[i]);
     r.points.push_back(p);
 
     BenchPoint m = p;
@@ -79,12 +89,15 @@ inline BenchRecord FakeRecord() {
     m.encode_fps = 5;
     m.encode_peak_mb = 400;
     m.decode_peak_mb = 60;
+    m.frame_accuracy_rms.assign(10, 0.0022);
+    m.frame_accuracy_rms[7] = 0.0031;
     m.commands = {
         "meshvid encode c -o hevc-q" + std::to_string(m.quality) + ".mvid -q",
         "meshvid decode hevc-q" + std::to_string(m.quality) + ".mvid --level 1 --no-write -q"};
     r.points.push_back(m);
     m.level = 0;
     m.d1_psnr_mean_of_frames = 20 + i;  // below every baseline point: no overlap
+    m.frame_d1_psnr.assign(10, 20 + i);
     m.d1_psnr = 16 + i;
     m.decode_fps = 2000;
     r.points.push_back(m);
@@ -111,12 +124,59 @@ inline BenchRecord FakeRecord() {
   failed.command = "meshvid encode c -o av1-q40.mvid --codec av1 -q";
   r.encodes.push_back(failed);
   ComputeBdRates(r);
+  ComputeDivergence(r);
   return r;
+}
+
+/// FakeRecord's JSON as meshvid bench wrote it before it recorded per-frame figures (but with
+/// the mean of per-frame PSNRs): no "frame_accuracy_rms"/"frame_d1_psnr" in the points, no
+/// "divergence".
+inline std::string RecordJsonWithoutFrameFigures() {
+  nlohmann::json j = nlohmann::json::parse(BenchRecordToJson(FakeRecord()));
+  for (nlohmann::json& p : j["points"]) {
+    p.erase("frame_accuracy_rms");
+    p.erase("frame_d1_psnr");
+  }
+  j.erase("divergence");
+  return j.dump(2) + "\n";
+}
+
+/// The `meshvid eval --json` text (tools/eval/eval_report.cc) a point's figures come from:
+/// its means, and its per-frame accuracy RMS and D1 PSNR (other per-frame figures made up).
+inline std::string FakeEvalJson(const BenchPoint& p) {
+  auto number = [](double v) -> nlohmann::json {
+    if (std::isnan(v)) return nullptr;
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    return v;
+  };
+  nlohmann::json j;
+  j["settings"] = {{"ref", "gt.obj"}, {"test", "test"}, {"samples", 50000}};
+  j["peak"] = 1.7;
+  j["frames"] = nlohmann::json::array();
+  for (std::size_t t = 0; t < p.frame_accuracy_rms.size(); ++t) {
+    j["frames"].push_back({{"frame", t},
+                           {"d1_psnr", number(p.frame_d1_psnr[t])},
+                           {"d2_psnr", number(p.frame_d1_psnr[t] + 4)},
+                           {"accuracy_rms", number(p.frame_accuracy_rms[t])},
+                           {"completeness_rms", 0.004},
+                           {"hausdorff", 0.01},
+                           {"coverage", 0.9}});
+  }
+  j["mean"] = {{"d1_psnr", number(p.d1_psnr)},
+               {"d2_psnr", number(p.d2_psnr)},
+               {"accuracy_rms", number(p.accuracy_rms)},
+               {"completeness_rms", number(p.completeness_rms)},
+               {"hausdorff", number(p.hausdorff)},
+               {"coverage", number(p.coverage)},
+               {"d1_psnr_mean_of_frames", number(p.d1_psnr_mean_of_frames)},
+               {"d2_psnr_mean_of_frames", number(p.d2_psnr_mean_of_frames)}};
+  return j.dump(2) + "\n";
 }
 
 /// FakeRecord's JSON as meshvid bench wrote it before it recorded the mean of per-frame PSNRs:
 /// no "d1_psnr_mean_of_frames"/"d2_psnr_mean_of_frames" in the points, no "psnr" in the
-/// BD-rates (then computed on the PSNR of the mean MSE).
+/// BD-rates (then computed on the PSNR of the mean MSE), no per-frame figures, no
+/// "divergence".
 inline std::string OlderFakeRecordJson() {
   BenchRecord r = FakeRecord();
   for (BenchPoint& p : r.points) {
@@ -127,8 +187,11 @@ inline std::string OlderFakeRecordJson() {
   for (nlohmann::json& p : j["points"]) {
     p.erase("d1_psnr_mean_of_frames");
     p.erase("d2_psnr_mean_of_frames");
+    p.erase("frame_accuracy_rms");
+    p.erase("frame_d1_psnr");
   }
   for (nlohmann::json& b : j["bd_rates"]) b.erase("psnr");
+  j.erase("divergence");
   return j.dump(2) + "\n";
 }
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "tests/bench_fake_records.h"
 #include "tests/test_util.h"
@@ -42,6 +43,14 @@ void ExpectSamePoint(const BenchPoint& a, const BenchPoint& b) {
   EXPECT_DOUBLE_EQ(a.decode_fps, b.decode_fps);
   EXPECT_DOUBLE_EQ(a.encode_peak_mb, b.encode_peak_mb);
   EXPECT_DOUBLE_EQ(a.decode_peak_mb, b.decode_peak_mb);
+  ASSERT_EQ(a.frame_accuracy_rms.size(), b.frame_accuracy_rms.size());
+  for (std::size_t t = 0; t < a.frame_accuracy_rms.size(); ++t) {
+    ExpectSameNumber(a.frame_accuracy_rms[t], b.frame_accuracy_rms[t]);
+  }
+  ASSERT_EQ(a.frame_d1_psnr.size(), b.frame_d1_psnr.size());
+  for (std::size_t t = 0; t < a.frame_d1_psnr.size(); ++t) {
+    ExpectSameNumber(a.frame_d1_psnr[t], b.frame_d1_psnr[t]);
+  }
   EXPECT_EQ(a.commands, b.commands);
 }
 
@@ -73,8 +82,81 @@ TEST(BenchRecordTest, JsonRoundTripKeepsEverything) {
   EXPECT_FALSE(parsed->encodes[0].ok);
   EXPECT_EQ(parsed->encodes[0].error, "encode: exit code 1: out of cheese");
   ASSERT_EQ(parsed->bd_rates.size(), record.bd_rates.size());
+  // The divergence check.
+  EXPECT_TRUE(parsed->divergence.has_frames);
+  EXPECT_EQ(parsed->divergence.codec, "hevc");
+  EXPECT_EQ(parsed->divergence.level, 1);
+  EXPECT_EQ(parsed->divergence.baseline_bits, 14);
+  EXPECT_EQ(parsed->divergence.frames_within, 9);
+  EXPECT_EQ(parsed->divergence.worst_frame, 7);
+  EXPECT_DOUBLE_EQ(parsed->divergence.worst_ratio, record.divergence.worst_ratio);
+  EXPECT_DOUBLE_EQ(parsed->divergence.share_within, 0.9);
+  EXPECT_DOUBLE_EQ(parsed->divergence.ratio_limit, 1.25);
+  EXPECT_FALSE(parsed->divergence.share_met);
+  EXPECT_DOUBLE_EQ(parsed->divergence.baseline_d1_psnr, 45);
   // Writing the parsed record again gives the same text.
   EXPECT_EQ(BenchRecordToJson(*parsed), text);
+}
+
+TEST(BenchRecordTest, PerFrameFiguresAreOneLineEachRoundedToSixDigits) {
+  BenchRecord record;
+  BenchPoint p;
+  p.method = kMethodMeshvid;
+  p.codec = "hevc";
+  p.ok = true;
+  p.frames = 4;
+  p.frame_accuracy_rms = {0.00123456789, 0.5, 0, std::nan("")};
+  p.frame_d1_psnr = {61.23456789, std::numeric_limits<double>::infinity(), 70, 71};
+  p.commands = {"meshvid eval --test 'a\"frame_d1_psnr\": [b'"};  // not an array
+  EXPECT_TRUE(HasFrameFigures(p));
+  record.points.push_back(p);
+  const std::string text = BenchRecordToJson(record);
+  EXPECT_NE(text.find("\"frame_accuracy_rms\": [0.00123457, 0.5, 0.0, null],\n"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\"frame_d1_psnr\": [61.2346, \"inf\", 70.0, 71.0],\n"), std::string::npos)
+      << text;
+  auto parsed = ParseBenchRecord(text, "p.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  const BenchPoint& q = parsed->points[0];
+  ASSERT_EQ(q.frame_accuracy_rms.size(), 4u);
+  EXPECT_DOUBLE_EQ(q.frame_accuracy_rms[0], 0.00123457);
+  EXPECT_TRUE(std::isnan(q.frame_accuracy_rms[3]));
+  EXPECT_TRUE(std::isinf(q.frame_d1_psnr[1]));
+  EXPECT_EQ(q.commands, p.commands);
+  EXPECT_TRUE(HasFrameFigures(q));
+  EXPECT_EQ(BenchRecordToJson(*parsed), text);
+  // Figures for another number of frames than the point's are not its per-frame figures.
+  p.frames = 5;
+  EXPECT_FALSE(HasFrameFigures(p));
+  p.frames = 4;
+  p.frame_d1_psnr.pop_back();
+  EXPECT_FALSE(HasFrameFigures(p));
+  EXPECT_FALSE(HasFrameFigures(BenchPoint{}));
+  auto bad = ParseBenchRecord(
+      "{\"format\": \"meshvid-bench-record/1\", \"points\": [{\"frame_d1_psnr\": 7}]}", "d.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code(), StatusCode::kCorrupt);
+}
+
+TEST(BenchRecordTest, RecordsWithoutPerFrameFiguresStillParse) {
+  const auto parsed = ParseBenchRecord(testing::RecordJsonWithoutFrameFigures(), "fake.json");
+  ASSERT_TRUE(parsed.ok()) << parsed.status().ToString();
+  ASSERT_EQ(parsed->points.size(), testing::FakeRecord().points.size());
+  for (const BenchPoint& p : parsed->points) {
+    EXPECT_TRUE(p.frame_accuracy_rms.empty());
+    EXPECT_TRUE(p.frame_d1_psnr.empty());
+    EXPECT_FALSE(HasFrameFigures(p));
+  }
+  EXPECT_TRUE(HasMeanOfFramesPsnr(parsed->points[0]));
+  // No stored check: an unset one.
+  EXPECT_FALSE(parsed->divergence.has_default);
+  EXPECT_EQ(parsed->divergence.frames, 0);
+  // Written again, the arrays are empty and read back as missing.
+  const std::string text = BenchRecordToJson(*parsed);
+  EXPECT_NE(text.find("\"frame_accuracy_rms\": []"), std::string::npos);
+  const auto reread = ParseBenchRecord(text, "fake.json");
+  ASSERT_TRUE(reread.ok());
+  EXPECT_FALSE(HasFrameFigures(reread->points[0]));
 }
 
 TEST(BenchRecordTest, BdRatesPerCodecAndLevelAgainstTheBaseline) {
@@ -134,6 +216,7 @@ TEST(BenchRecordTest, OlderRecordsWithoutTheMeanOfFramesStillParse) {
     EXPECT_TRUE(std::isnan(p.d2_psnr_mean_of_frames));
   }
   EXPECT_DOUBLE_EQ(parsed->points[0].d1_psnr, 29);  // the old figure is kept
+  EXPECT_FALSE(HasFrameFigures(parsed->points[0]));
   EXPECT_EQ(RecordPsnrKind(*parsed), kPsnrOfMeanMse);
   EXPECT_DOUBLE_EQ(D1Psnr(parsed->points[0], RecordPsnrKind(*parsed)), 29);
   // Stored BD-rates without "psnr" were computed on the PSNR of the mean MSE, and say so.

@@ -81,6 +81,56 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   EXPECT_EQ(md, GenerateResultsMarkdown(records, FakeOptions()));
 }
 
+TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
+  BenchRecord failed_sim;
+  failed_sim.sequence = "broken";
+  failed_sim.rig = "6-ring";
+  BenchRecord met = testing::FakeRecord();
+  met.rig = "6-ring";
+  BenchPoint* m = FindPoint(met, kMethodMeshvid, "hevc", 40, 1);
+  ASSERT_NE(m, nullptr);
+  m->frame_accuracy_rms.assign(10, 0.0021);
+  m->frame_accuracy_rms[3] = 0.0024;
+  m->d1_psnr_mean_of_frames = 45.5;
+  auto no_frames = ParseBenchRecord(testing::RecordJsonWithoutFrameFigures(), "fake.json");
+  ASSERT_TRUE(no_frames.ok());
+  no_frames->sequence = "older";
+  const std::vector<BenchRecord> records = {testing::FakeRecord(), met, *no_frames, failed_sim};
+  const std::string md = GenerateResultsMarkdown(records, FakeOptions());
+  EXPECT_TRUE(Contains(md, "## Divergence\n\nmeshvid at the encoder's default settings (HEVC, "
+                           "quality 40, decoded at the finest level its file stores)"))
+      << md;
+  EXPECT_TRUE(Contains(md, "Goals: the ratio is at most 1.25 on at least 95% of the frames"));
+  EXPECT_TRUE(Contains(md,
+                       "| sequence | rig | default point | baseline best | frames within 1.25x | "
+                       "worst frame: ratio (meshvid vs baseline accuracy) | D1 PSNR, mean of "
+                       "frames: default vs baseline best |"));
+  // FakeRecord: 9 of 10 frames within 1.25x, frame 7 at 1.55x (3.1 against 2 mm), 35 against
+  // 45 dB.
+  EXPECT_TRUE(Contains(md, "| fake | 3-arc | HEVC q40 L1 | 14 bits | 9/10 (90.0%) missed | "
+                           "7: 1.55x (3.1 vs 2) | 35.00 vs 45.00 dB missed |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| fake | 6-ring | HEVC q40 L1 | 14 bits | 10/10 (100.0%) met | "
+                           "3: 1.2x (2.4 vs 2) | 45.50 vs 45.00 dB met |"))
+      << md;
+  // A record without per-frame figures still compares the D1 PSNRs, and says why not more.
+  EXPECT_TRUE(Contains(md, "| older | 3-arc | HEVC q40 L1 | 14 bits | n/a (no per-frame "
+                           "figures) | n/a | 35.00 vs 45.00 dB missed |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "- older 3-arc: no per-frame figures for the default point"));
+  EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | | | |"));
+  // After the goal table, before the records' sections.
+  EXPECT_LT(md.find("## Against the goal"), md.find("## Divergence"));
+  EXPECT_LT(md.find("## Divergence"), md.find("## fake, 3 views"));
+  // A record without the default point.
+  BenchRecord no_default = testing::FakeRecord();
+  for (BenchPoint& p : no_default.points) p.quality = p.quality == 40 ? 45 : p.quality;
+  const std::string md2 = GenerateResultsMarkdown({no_default}, FakeOptions());
+  EXPECT_TRUE(Contains(md2, "| fake | 3-arc | HEVC q40 (n/a) | 14 bits | n/a | n/a | n/a |"))
+      << md2;
+  EXPECT_TRUE(Contains(md2, "- fake 3-arc: no hevc q40 point"));
+}
+
 TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
   const auto older = ParseBenchRecord(testing::OlderFakeRecordJson(), "fake-3-arc.json");
   ASSERT_TRUE(older.ok()) << older.status().ToString();
@@ -92,6 +142,8 @@ TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
                            "33.00 |"));
   EXPECT_TRUE(Contains(md, "This record predates the mean of per-frame PSNRs"));
   EXPECT_TRUE(Contains(md, "![D1 PSNR, mean MSE (older record), against rate, fake-3-arc]"));
+  // Its divergence check compares the PSNRs of the mean MSE, and says so.
+  EXPECT_TRUE(Contains(md, "| 31.00 vs 44.00 dB (mean MSE, older record) missed |")) << md;
   // Its plot is on the same figure as its BD-rates.
   const std::string script = RdPlotScript(*older, "fake-3-arc-rd.png");
   EXPECT_TRUE(Contains(script, "set ylabel \"D1 PSNR, of the mean MSE (dB)\""));

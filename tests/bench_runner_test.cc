@@ -18,7 +18,8 @@
 namespace meshvid {
 namespace {
 
-/// Appends its arguments to calls.txt beside itself. encode fails for --quality 66.
+/// Appends its arguments to calls.txt beside itself. encode fails for --quality 66. eval gives
+/// two frames of accuracy RMS 0.001, but 0.002 on frame 1 of a .mvid.
 constexpr const char* kFakeMeshvid = R"SH(#!/bin/sh
 here=$(dirname "$0")
 echo "$*" >> "$here/calls.txt"
@@ -68,14 +69,16 @@ case $cmd in
     echo '{"frames_per_second": 20}' > "$json" ;;
   eval)
     case "$test" in
-      *.mvid) psnr=$((30 + $(cat "$test") / 10 + level)) ;;
-      *) psnr=$(echo "$test" | sed 's|.*/b\([0-9]*\)/.*|\1|'); psnr=$((psnr * 3)) ;;
+      *.mvid) psnr=$((30 + $(cat "$test") / 10 + level)); last=0.002 ;;
+      *) psnr=$(echo "$test" | sed 's|.*/b\([0-9]*\)/.*|\1|'); psnr=$((psnr * 3)); last=0.001 ;;
     esac
     echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\",
            \"d1_psnr_mean_of_frames\": $((psnr + 2)), \"d2_psnr_mean_of_frames\": 100,
            \"accuracy_rms\": 0.001,
            \"completeness_rms\": 0.002, \"hausdorff\": 0.01, \"coverage\": 0.9},
-           \"frames\": [{}, {}]}" > "$json" ;;
+           \"frames\": [{\"frame\": 0, \"d1_psnr\": $psnr, \"accuracy_rms\": 0.001},
+                      {\"frame\": 1, \"d1_psnr\": \"inf\", \"accuracy_rms\": $last}]}" \
+      > "$json" ;;
   *) echo "unknown command $cmd" >&2; exit 2 ;;
 esac
 )SH";
@@ -144,6 +147,26 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_GT(h80->encode_peak_mb, 0);
   ASSERT_EQ(h80->commands.size(), 3u);
   EXPECT_EQ(h80->commands[1].rfind("meshvid decode ", 0), 0u) << h80->commands[1];
+  // Per-frame figures from the eval JSON.
+  EXPECT_EQ(h80->frame_accuracy_rms, (std::vector<double>{0.001, 0.002}));
+  ASSERT_EQ(h80->frame_d1_psnr.size(), 2u);
+  EXPECT_DOUBLE_EQ(h80->frame_d1_psnr[0], 39);
+  EXPECT_TRUE(std::isinf(h80->frame_d1_psnr[1]));
+  EXPECT_EQ(b10->frame_accuracy_rms, (std::vector<double>{0.001, 0.001}));
+  // The divergence check: HEVC q40 at level 1 (the file's finest) against 14 bits (44 dB, the
+  // baseline's highest): frame 1 at 2x, 37 against 44 dB.
+  const DivergenceCheck& d = r.divergence;
+  EXPECT_TRUE(d.has_default && d.has_baseline && d.has_frames) << d.note;
+  EXPECT_EQ(d.quality, 40);
+  EXPECT_EQ(d.level, 1);
+  EXPECT_EQ(d.baseline_bits, 14);
+  EXPECT_EQ(d.frames, 2);
+  EXPECT_EQ(d.frames_within, 1);
+  EXPECT_EQ(d.worst_frame, 1);
+  EXPECT_DOUBLE_EQ(d.worst_ratio, 2);
+  EXPECT_DOUBLE_EQ(d.meshvid_d1_psnr, 37);
+  EXPECT_DOUBLE_EQ(d.baseline_d1_psnr, 44);
+  EXPECT_FALSE(d.psnr_met);
   const BenchEncode* failed = FindEncode(copy, kMethodMeshvid, "hevc", 66);
   ASSERT_NE(failed, nullptr);
   EXPECT_FALSE(failed->ok);
@@ -158,6 +181,7 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   auto saved = ReadBenchRecord(bench.options.results_dir + "/fake-3-arc.json");
   ASSERT_TRUE(saved.ok()) << saved.status().ToString();
   EXPECT_EQ(saved->points.size(), r.points.size());
+  EXPECT_EQ(saved->divergence.frames_within, 1);
   EXPECT_FALSE(std::filesystem::exists(bench.options.work_dir + "/fake-3-arc/baseline/b10"));
 
   // Again: only the failed encode is retried.
@@ -202,6 +226,70 @@ TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {
     logged |= line.find("8 points were recorded without the mean of per-frame PSNRs") !=
               std::string::npos;
   EXPECT_TRUE(logged);
+}
+
+TEST(BenchRunnerTest, PointsWithoutPerFrameFiguresAreFilledFromTheirEvalJsonOrMeasuredAgain) {
+  FakeBench bench;
+  ASSERT_TRUE(RunBench(bench.options, bench.events).ok());
+  // The record as the bench wrote it before it recorded per-frame figures.
+  const std::string path = bench.options.results_dir + "/fake-3-arc.json";
+  auto strip = [&path] {
+    auto record = ReadBenchRecord(path);
+    ASSERT_TRUE(record.ok());
+    for (BenchPoint& p : record->points) p.frame_accuracy_rms = p.frame_d1_psnr = {};
+    record->divergence = DivergenceCheck();
+    ASSERT_TRUE(WriteBenchRecord(*record, path).ok());
+  };
+  auto has_all = [](const BenchRecord& r) {
+    for (const BenchPoint& p : r.points) {
+      if (!HasFrameFigures(p)) return false;
+    }
+    return true;
+  };
+  auto logged = [&bench](const std::string& text) {
+    for (const std::string& line : bench.log) {
+      if (line.find(text) != std::string::npos) return true;
+    }
+    return false;
+  };
+  strip();
+  // Every eval JSON is still in the work folder: nothing is measured again (the one call is
+  // the encode that always fails).
+  std::size_t calls = bench.Calls().size();
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  std::vector<std::string> after = bench.Calls();
+  ASSERT_EQ(after.size(), calls + 1);
+  EXPECT_NE(after.back().find("--quality 66"), std::string::npos);
+  EXPECT_TRUE(has_all((*records)[0]));
+  EXPECT_EQ((*records)[0].divergence.frames_within, 1);
+  EXPECT_TRUE(logged("8 points got their per-frame figures from their eval JSON")) << bench.log[0];
+
+  // Two eval JSONs gone: those two points are measured again (the baseline's with its run,
+  // its decoded frames being gone), the others filled.
+  strip();
+  const std::string work = bench.options.work_dir + "/fake-3-arc/";
+  ASSERT_TRUE(std::filesystem::remove(work + "hevc-q80-L1.eval.json"));
+  ASSERT_TRUE(std::filesystem::remove(work + "draco-b10.eval.json"));
+  calls = after.size();
+  records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  after = bench.Calls();
+  std::vector<std::string> new_calls(after.begin() + calls, after.end());
+  int evals = 0, baselines = 0;
+  for (const std::string& call : new_calls) {
+    evals += call.rfind("eval ", 0) == 0;
+    baselines += call.rfind("bench-baseline ", 0) == 0;
+  }
+  EXPECT_EQ(evals, 2);
+  EXPECT_EQ(baselines, 1);
+  EXPECT_EQ(new_calls.size(), 6u);  // + Draco decoding, decode, the failing encode
+  EXPECT_TRUE(has_all((*records)[0]));
+  EXPECT_TRUE(logged("6 points got their per-frame figures"));
+  EXPECT_TRUE(
+      logged("2 points were recorded without per-frame figures and their eval JSON is "
+             "gone; measuring them again"));
+  EXPECT_TRUE(logged("divergence of hevc q40 L1 against the baseline's 14 bits: 1/2 frames"));
 }
 
 TEST(BenchRunnerTest, StopsWhenProgressAsksAndKeepsWhatIsDone) {

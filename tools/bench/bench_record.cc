@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -25,23 +26,121 @@ json Number(double value) {
   return value;
 }
 
-/// A number written by Number(); a missing key is 0.
-double GetNumber(const json& j, const char* key) {
-  const auto it = j.find(key);
-  if (it == j.end()) return 0;
-  if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
-  if (it->is_string()) {
-    const std::string s = it->get<std::string>();
+/// A value written by Number(); `key` names it in messages.
+double ToNumber(const json& value, const char* key) {
+  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
+  if (value.is_string()) {
+    const std::string s = value.get<std::string>();
     if (s == "inf") return std::numeric_limits<double>::infinity();
     if (s == "-inf") return -std::numeric_limits<double>::infinity();
     throw std::invalid_argument(std::string("'") + key + "' is not a number");
   }
-  return it->get<double>();
+  return value.get<double>();
+}
+
+/// A number written by Number(); a missing key is 0.
+double GetNumber(const json& j, const char* key) {
+  const auto it = j.find(key);
+  return it == j.end() ? 0 : ToNumber(*it, key);
 }
 
 /// As GetNumber, but a missing key is NaN: a figure older records do not hold.
 double GetOptionalNumber(const json& j, const char* key) {
   return j.contains(key) ? GetNumber(j, key) : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// An array of numbers written by Number(); a missing key is an empty array.
+std::vector<double> GetNumbers(const json& j, const char* key) {
+  std::vector<double> values;
+  const auto it = j.find(key);
+  if (it == j.end()) return values;
+  if (!it->is_array()) throw std::invalid_argument(std::string("'") + key + "' is not an array");
+  values.reserve(it->size());
+  for (const json& value : *it) values.push_back(ToNumber(value, key));
+  return values;
+}
+
+json Numbers(const std::vector<double>& values) {
+  json array = json::array();
+  for (double value : values) array.push_back(Number(RoundFrameFigure(value)));
+  return array;
+}
+
+/// The keys of the per-frame arrays, written one array a line.
+constexpr const char* kFrameArrayKeys[] = {"frame_accuracy_rms", "frame_d1_psnr"};
+
+/// `text` (indented JSON) with every per-frame array on one line: "[1.5, 2, null]" rather
+/// than one value a line, so a record of many frames stays small and readable. Their values
+/// are numbers, null, "inf" or "-inf": no brackets or spaces inside. A string value cannot
+/// match `"key": [`, its quotes being escaped.
+std::string CollapseFrameArrays(std::string text) {
+  for (const char* key : kFrameArrayKeys) {
+    const std::string opening = std::string("\"") + key + "\": [";
+    for (std::size_t at = text.find(opening); at != std::string::npos;
+         at = text.find(opening, at + 1)) {
+      const std::size_t begin = at + opening.size();
+      const std::size_t end = text.find(']', begin);
+      if (end == std::string::npos) break;
+      std::string items;  // the values without whitespace, ", " between them
+      for (std::size_t i = begin; i < end; ++i) {
+        if (text[i] == ' ' || text[i] == '\n') continue;
+        items += text[i];
+        if (text[i] == ',') items += ' ';
+      }
+      text.replace(begin, end - begin, items);
+    }
+  }
+  return text;
+}
+
+json DivergenceToJson(const DivergenceCheck& d) {
+  return {{"has_default", d.has_default},
+          {"has_baseline", d.has_baseline},
+          {"has_frames", d.has_frames},
+          {"note", d.note},
+          {"codec", d.codec},
+          {"quality", d.quality},
+          {"level", d.level},
+          {"baseline_bits", d.baseline_bits},
+          {"psnr", d.psnr},
+          {"ratio_limit", Number(d.ratio_limit)},
+          {"frames", d.frames},
+          {"frames_within", d.frames_within},
+          {"share_within", Number(d.share_within)},
+          {"worst_frame", d.worst_frame},
+          {"worst_meshvid_accuracy_rms", Number(d.worst_meshvid_accuracy_rms)},
+          {"worst_baseline_accuracy_rms", Number(d.worst_baseline_accuracy_rms)},
+          {"worst_ratio", Number(d.worst_ratio)},
+          {"meshvid_d1_psnr", Number(d.meshvid_d1_psnr)},
+          {"baseline_d1_psnr", Number(d.baseline_d1_psnr)},
+          {"share_met", d.share_met},
+          {"psnr_met", d.psnr_met}};
+}
+
+DivergenceCheck DivergenceFromJson(const json& j) {
+  DivergenceCheck d;
+  d.has_default = j.value("has_default", false);
+  d.has_baseline = j.value("has_baseline", false);
+  d.has_frames = j.value("has_frames", false);
+  d.note = j.value("note", "");
+  d.codec = j.value("codec", "");
+  d.quality = j.value("quality", 0);
+  d.level = j.value("level", -1);
+  d.baseline_bits = j.value("baseline_bits", 0);
+  d.psnr = j.value("psnr", std::string(kPsnrMeanOfFrames));
+  d.ratio_limit = GetOptionalNumber(j, "ratio_limit");
+  d.frames = j.value("frames", 0);
+  d.frames_within = j.value("frames_within", 0);
+  d.share_within = GetOptionalNumber(j, "share_within");
+  d.worst_frame = j.value("worst_frame", -1);
+  d.worst_meshvid_accuracy_rms = GetOptionalNumber(j, "worst_meshvid_accuracy_rms");
+  d.worst_baseline_accuracy_rms = GetOptionalNumber(j, "worst_baseline_accuracy_rms");
+  d.worst_ratio = GetOptionalNumber(j, "worst_ratio");
+  d.meshvid_d1_psnr = GetOptionalNumber(j, "meshvid_d1_psnr");
+  d.baseline_d1_psnr = GetOptionalNumber(j, "baseline_d1_psnr");
+  d.share_met = j.value("share_met", false);
+  d.psnr_met = j.value("psnr_met", false);
+  return d;
 }
 
 json CostToJson(const StepCost& c) {
@@ -118,6 +217,8 @@ json PointToJson(const BenchPoint& p) {
           {"encode_peak_mb", Number(p.encode_peak_mb)},
           {"decode_peak_mb", Number(p.decode_peak_mb)},
           {"vertices", Number(p.vertices)},
+          {"frame_accuracy_rms", Numbers(p.frame_accuracy_rms)},
+          {"frame_d1_psnr", Numbers(p.frame_d1_psnr)},
           {"commands", p.commands}};
 }
 
@@ -145,6 +246,8 @@ BenchPoint PointFromJson(const json& j) {
   p.encode_peak_mb = GetNumber(j, "encode_peak_mb");
   p.decode_peak_mb = GetNumber(j, "decode_peak_mb");
   p.vertices = GetNumber(j, "vertices");
+  p.frame_accuracy_rms = GetNumbers(j, "frame_accuracy_rms");
+  p.frame_d1_psnr = GetNumbers(j, "frame_d1_psnr");
   if (j.contains("commands")) p.commands = j.at("commands").get<std::vector<std::string>>();
   return p;
 }
@@ -223,7 +326,8 @@ std::string BenchRecordToJson(const BenchRecord& r) {
                              {"psnr_high", Number(b.psnr_high)},
                              {"note", b.note}});
   }
-  return j.dump(2) + "\n";
+  j["divergence"] = DivergenceToJson(r.divergence);
+  return CollapseFrameArrays(j.dump(2)) + "\n";
 }
 
 StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::string& name) {
@@ -284,6 +388,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
       entry.note = b.value("note", "");
       r.bd_rates.push_back(entry);
     }
+    if (j.contains("divergence")) r.divergence = DivergenceFromJson(j.at("divergence"));
     return r;
   } catch (const std::exception& e) {  // nlohmann type errors, bad numbers
     return CorruptError(name + ": " + e.what());
@@ -360,6 +465,19 @@ void UpsertEncode(BenchRecord& record, const BenchEncode& encode) {
 
 bool HasMeanOfFramesPsnr(const BenchPoint& point) {
   return !std::isnan(point.d1_psnr_mean_of_frames);
+}
+
+bool HasFrameFigures(const BenchPoint& point) {
+  const std::size_t frames = point.frame_accuracy_rms.size();
+  return frames > 0 && point.frame_d1_psnr.size() == frames &&
+         static_cast<std::size_t>(point.frames) == frames;
+}
+
+double RoundFrameFigure(double value) {
+  if (!std::isfinite(value)) return value;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", value);
+  return std::strtod(text, nullptr);
 }
 
 std::string RecordPsnrKind(const BenchRecord& record) {

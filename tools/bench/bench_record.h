@@ -27,6 +27,12 @@ inline constexpr const char* kMethodBaseline = "baseline";
 inline constexpr const char* kPsnrMeanOfFrames = "d1_psnr_mean_of_frames";
 inline constexpr const char* kPsnrOfMeanMse = "d1_psnr";
 
+/// The divergence check (DivergenceCheck): a frame is within when meshvid's accuracy RMS is at
+/// most this many times the baseline's on the same frame...
+inline constexpr double kDivergenceRatioLimit = 1.25;
+/// ...and the goal is that at least this share of the frames is within.
+inline constexpr double kDivergenceShareGoal = 0.95;
+
 /// What one child process step cost.
 struct StepCost {
   double wall_seconds = 0;
@@ -79,7 +85,12 @@ struct BenchPoint {
   double decode_fps = 0;
   double encode_peak_mb = 0;
   double decode_peak_mb = 0;
-  double vertices = 0;                ///< vertices per decoded frame (mean)
+  double vertices = 0;  ///< vertices per decoded frame (mean)
+  /// Per-frame figures from the point's `meshvid eval --json` (its "frames"), in frame order,
+  /// rounded to 6 significant digits: accuracy RMS and D1 PSNR (dB, not capped; +inf for an
+  /// exact frame); NaN where the eval has none. Empty in points recorded before they were.
+  std::vector<double> frame_accuracy_rms;
+  std::vector<double> frame_d1_psnr;  ///< as frame_accuracy_rms
   std::vector<std::string> commands;  ///< exact commands that produced the point
 };
 
@@ -96,6 +107,36 @@ struct BdRateEntry {
   double psnr_low = 0;
   double psnr_high = 0;
   std::string note;  ///< why there is no value (too few points, no overlap)
+};
+
+/// meshvid at the encoder's default settings (the default codec and quality, decoded at the
+/// finest level its file stores) against the baseline's best setting (the Draco point with
+/// the highest D1 PSNR), frame by frame; computed by ComputeDivergence (bench_divergence.h).
+struct DivergenceCheck {
+  bool has_default = false;   ///< the default point was measured (ok)
+  bool has_baseline = false;  ///< a baseline point was measured (ok)
+  /// Both points hold per-frame accuracies, so the frame figures below are set.
+  bool has_frames = false;
+  std::string note;   ///< what is missing or odd, when something is
+  std::string codec;  ///< the default point: codec, quality, level
+  int quality = 0;
+  int level = -1;
+  int baseline_bits = 0;  ///< the baseline's best setting: Draco position bits
+  /// The D1 PSNR the baseline's best is picked by and compared on (RecordPsnrKind's).
+  std::string psnr = kPsnrMeanOfFrames;
+  double ratio_limit = kDivergenceRatioLimit;
+  int frames = 0;         ///< frames compared
+  int frames_within = 0;  ///< frames whose accuracy ratio is <= ratio_limit
+  double share_within = std::numeric_limits<double>::quiet_NaN();  ///< frames_within / frames
+  /// The frame with the highest ratio (a frame without a figure counts as the highest).
+  int worst_frame = -1;
+  double worst_meshvid_accuracy_rms = std::numeric_limits<double>::quiet_NaN();
+  double worst_baseline_accuracy_rms = std::numeric_limits<double>::quiet_NaN();
+  double worst_ratio = std::numeric_limits<double>::quiet_NaN();
+  double meshvid_d1_psnr = std::numeric_limits<double>::quiet_NaN();   ///< dB, of `psnr` kind
+  double baseline_d1_psnr = std::numeric_limits<double>::quiet_NaN();  ///< dB, of `psnr` kind
+  bool share_met = false;  ///< share_within >= kDivergenceShareGoal
+  bool psnr_met = false;   ///< meshvid_d1_psnr >= baseline_d1_psnr
 };
 
 /// The machine a record was measured on.
@@ -138,6 +179,7 @@ struct BenchRecord {
   std::vector<BenchEncode> encodes;
   std::vector<BenchPoint> points;
   std::vector<BdRateEntry> bd_rates;
+  DivergenceCheck divergence;  ///< absent in records written before it was (then unset)
 };
 
 /// The record's file stem: "<sequence>-<rig>".
@@ -175,6 +217,14 @@ void UpsertEncode(BenchRecord& record, const BenchEncode& encode);
 /// True when the point holds the mean of its per-frame PSNRs (points recorded before it was
 /// do not).
 bool HasMeanOfFramesPsnr(const BenchPoint& point);
+
+/// True when the point holds its per-frame figures, one per frame of the point (points
+/// recorded before they were do not).
+bool HasFrameFigures(const BenchPoint& point);
+
+/// `value` rounded to 6 significant digits, as per-frame figures are recorded (+-inf and
+/// NaN unchanged).
+double RoundFrameFigure(double value);
 
 /// The D1 PSNR a record's BD-rates and RD plot use: kPsnrMeanOfFrames when every successful
 /// point has it, else kPsnrOfMeanMse (an older record; one figure for all points, so curves

@@ -10,6 +10,8 @@
 #include <set>
 #include <thread>
 
+#include "tools/bench/bench_divergence.h"
+
 namespace meshvid {
 namespace {
 
@@ -83,6 +85,62 @@ std::string GoalRow(const BenchRecord& record) {
                                       (meshvid_coverage >= baseline_coverage ? " met" : " not met")
                                 : std::string("n/a"));
   return row + " |\n";
+}
+
+std::string MetMark(bool met) { return met ? " met" : " missed"; }
+
+/// The divergence row of one record (its check computed from its points, so a record written
+/// before the check was recorded has one too); its note, if any, goes to `notes`.
+std::string DivergenceRow(const BenchRecord& record, std::string* notes) {
+  std::string row = "| " + record.sequence + " | " + record.rig + " | ";
+  if (!record.simulate_ok) return row + "simulation failed | | | | |\n";
+  BenchRecord copy = record;
+  ComputeDivergence(copy);
+  const DivergenceCheck& d = copy.divergence;
+  if (!d.note.empty()) *notes += "- " + record.sequence + " " + record.rig + ": " + d.note + "\n";
+  row += Upper(d.codec) + " q" + std::to_string(d.quality) +
+         (d.level >= 0 ? " L" + std::to_string(d.level) : std::string()) +
+         (d.has_default ? "" : " (n/a)") + " | ";
+  row += (d.has_baseline ? std::to_string(d.baseline_bits) + " bits" : std::string("n/a")) + " | ";
+  if (!d.has_default || !d.has_baseline) return row + "n/a | n/a | n/a |\n";
+  if (d.has_frames) {
+    row += std::to_string(d.frames_within) + "/" + std::to_string(d.frames) + " (" +
+           Fmt("%.1f%%", 100 * d.share_within) + ")" + MetMark(d.share_met) + " | ";
+    row += std::to_string(d.worst_frame) + ": " + Fmt("%.3g", d.worst_ratio) + "x (" +
+           Fmt("%.3g", 1e3 * d.worst_meshvid_accuracy_rms) + " vs " +
+           Fmt("%.3g", 1e3 * d.worst_baseline_accuracy_rms) + ") | ";
+  } else {
+    row += "n/a (no per-frame figures) | n/a | ";
+  }
+  row += Fmt("%.2f", d.meshvid_d1_psnr) + " vs " + Fmt("%.2f", d.baseline_d1_psnr) + " dB" +
+         (d.psnr == kPsnrOfMeanMse ? " (mean MSE, older record)" : "") + MetMark(d.psnr_met);
+  return row + " |\n";
+}
+
+/// The "Divergence" section: one row per record.
+std::string DivergenceSection(const std::vector<BenchRecord>& records) {
+  std::string md =
+      "## Divergence\n\n"
+      "meshvid at the encoder's default settings (" +
+      Upper(DefaultCodecName()) + ", quality " + std::to_string(DefaultQuality()) +
+      ", decoded at the finest level its file stores) against the baseline's best setting (the "
+      "Draco position bits with the highest D1 PSNR, mean of frames), frame by frame: ratio = "
+      "meshvid's accuracy RMS / the baseline's on the same frame. Goals: the ratio is at most " +
+      Fmt("%.3g", kDivergenceRatioLimit) + " on at least " +
+      Fmt("%.0f%%", 100 * kDivergenceShareGoal) +
+      " of the frames, and meshvid's D1 PSNR (mean of frames) is at least the baseline best's. "
+      "Worst frame: the frame with the highest ratio (0-based), its ratio and both accuracies "
+      "(RMS, 10^-3 data units).\n\n";
+  md += "| sequence | rig | default point | baseline best | frames within " +
+        Fmt("%.3g", kDivergenceRatioLimit) +
+        "x | worst frame: ratio (meshvid vs baseline accuracy) | D1 PSNR, mean of frames: "
+        "default vs baseline best |\n";
+  md += "|---|---|---|---|---|---|---|\n";
+  std::string notes;
+  for (const BenchRecord& r : records) md += DivergenceRow(r, &notes);
+  md += "\n";
+  if (!notes.empty()) md += notes + "\n";
+  return md;
 }
 
 std::string PointRow(const BenchPoint& p) {
@@ -264,6 +322,8 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "fused on their own with the encoder's fusion (`FuseRangeMeshes`), the fused mesh coded "
       "with Draco (edgebreaker, position quantisation 8-14 bits, speed 0), decoded and "
       "evaluated the same way. Rate = the sum of the Draco bitstreams (no container).\n"
+      "- Every point also records each frame's accuracy RMS and D1 PSNR (from its `meshvid "
+      "eval --json`), which the Divergence table compares frame by frame.\n"
       "- Mbit/s at the capture's frame rate. Accuracy (test to ground truth) and completeness "
       "(ground truth to test) are RMS exact point-to-surface distances in 10^-3 data units "
       "(mm for metric data); coverage is the share of ground-truth samples within 0.25% of p "
@@ -301,6 +361,7 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
                         : "| " + r.sequence + " | " + r.rig + " | simulation failed | | |\n";
   }
   md += "\n";
+  md += DivergenceSection(records);
   for (const BenchRecord& r : records) md += RecordSection(r, options);
   return md;
 }

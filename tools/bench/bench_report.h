@@ -27,8 +27,9 @@ struct ReportOptions {
   std::string plot_note;
 };
 
-/// The whole RESULTS.md text for `records` (in the order given). Deterministic: the same
-/// records and options give the same text.
+/// The whole RESULTS.md text for `records` (in the order given): the goal check, the
+/// "Divergence" table (each record's check computed from its points, bench_divergence.h), then
+/// a section per record. Deterministic: the same records and options give the same text.
 std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
                                     const ReportOptions& options);
 

@@ -11,8 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "tools/bench/baseline.h"
+#include "tools/bench/bench_divergence.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/child_process.h"
+#include "tools/bench/eval_figures.h"
 #include "tools/io/capture.h"
 
 namespace meshvid {
@@ -42,9 +44,10 @@ StatusOr<json> ReadJsonFile(const std::string& path) {
 }
 
 /// A point a resumed run keeps: measured, with the figures this version records (a point of an
-/// older record lacks the mean of per-frame PSNRs, so it is measured again).
+/// older record lacks the mean of per-frame PSNRs or the per-frame figures, so it is measured
+/// again, unless the figures were filled from its eval JSON: BackfillFrameFigures).
 bool Finished(const BenchPoint* point) {
-  return point != nullptr && point->ok && HasMeanOfFramesPsnr(*point);
+  return point != nullptr && point->ok && HasMeanOfFramesPsnr(*point) && HasFrameFigures(*point);
 }
 
 std::string JoinInts(const std::vector<int>& values) {
@@ -129,6 +132,7 @@ class Runner {
 
   Status Save(BenchRecord& record) {
     ComputeBdRates(record);
+    ComputeDivergence(record);
     struct rusage self {};
     if (getrusage(RUSAGE_SELF, &self) == 0)
       record.bench_process_peak_mb = self.ru_maxrss * 1024.0 / 1e6;
@@ -185,11 +189,25 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
     StatusOr<BenchRecord> previous = ReadBenchRecord(record_path_);
     if (previous.ok() && previous->run_key == run_key) {
       record = std::move(*previous);
-      const long older = std::count_if(record.points.begin(), record.points.end(),
-                                       [](const BenchPoint& p) { return p.ok && !Finished(&p); });
+      // Points recorded before the per-frame figures: from their eval JSON, if still there.
+      const int filled = BackfillFrameFigures(record, options_.work_dir);
+      if (filled > 0) {
+        Log(label_ + ": " + std::to_string(filled) +
+            " points got their per-frame figures from their eval JSON in " + dir_);
+      }
+      long older = 0, no_frames = 0;
+      for (const BenchPoint& p : record.points) {
+        older += p.ok && !HasMeanOfFramesPsnr(p);
+        no_frames += p.ok && HasMeanOfFramesPsnr(p) && !HasFrameFigures(p);
+      }
       if (older > 0) {
         Log(label_ + ": " + std::to_string(older) +
             " points were recorded without the mean of per-frame PSNRs; measuring them again");
+      }
+      if (no_frames > 0) {
+        Log(label_ + ": " + std::to_string(no_frames) +
+            " points were recorded without per-frame figures and their eval JSON is gone; "
+            "measuring them again");
       }
     } else {
       Log(label_ + ": " + record_path_ + " was made with other settings; starting afresh");
@@ -216,7 +234,9 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   for (const auto& [codec, quality] : Configurations()) {
     MESHVID_RETURN_IF_ERROR(Meshvid(record, codec, quality));
   }
-  return Save(record);
+  MESHVID_RETURN_IF_ERROR(Save(record));
+  Log(label_ + " " + DescribeDivergence(record.divergence));
+  return Status::Ok();
 }
 
 Status Runner::Simulate(const BenchSequence& sequence, const BenchRig& rig, BenchRecord& record) {
@@ -275,24 +295,14 @@ bool Runner::Evaluate(const BenchRecord& record, const std::string& test, int le
     point->error = "eval: " + ChildFailure(run);
     return false;
   }
-  StatusOr<json> result = ReadJsonFile(json_path);
-  if (!result.ok() || !result->contains("mean")) {
-    point->error =
-        "eval: " + (result.ok() ? json_path + " has no \"mean\"" : result.status().ToString());
+  const StatusOr<std::string> text = ReadTextFile(json_path);
+  StatusOr<EvalFigures> figures =
+      text.ok() ? ParseEvalFigures(*text, json_path) : StatusOr<EvalFigures>(text.status());
+  if (!figures.ok()) {
+    point->error = "eval: " + figures.status().ToString();
     return false;
   }
-  const json& mean = result->at("mean");
-  point->d1_psnr = JsonNumber(mean, "d1_psnr");
-  point->d2_psnr = JsonNumber(mean, "d2_psnr");
-  point->d1_psnr_mean_of_frames = JsonNumber(mean, "d1_psnr_mean_of_frames");
-  point->d2_psnr_mean_of_frames = JsonNumber(mean, "d2_psnr_mean_of_frames");
-  point->accuracy_rms = JsonNumber(mean, "accuracy_rms");
-  point->completeness_rms = JsonNumber(mean, "completeness_rms");
-  point->hausdorff = JsonNumber(mean, "hausdorff");
-  point->coverage = JsonNumber(mean, "coverage");
-  if (result->contains("frames") && result->at("frames").is_array()) {
-    point->frames = static_cast<int>(result->at("frames").size());
-  }
+  SetEvalFigures(*figures, point);
   return true;
 }
 

@@ -3,8 +3,11 @@
 // run the per-frame baseline (fusion + Draco) on the same capture and evaluate it the same
 // way, and record everything (bench_record.h). Every step runs as a child process of the
 // `meshvid` executable, measured for wall time and peak memory; a failing step is recorded
-// and the run goes on. Finished steps found in an existing record are not run again (points
-// of an older record, without the mean of per-frame PSNRs, are measured again).
+// and the run goes on. Finished steps found in an existing record are not run again: points
+// of an older record without the per-frame figures get them from their eval JSON in the work
+// folder when it is still there (eval_figures.h); such points whose eval JSON is gone, and
+// points without the mean of per-frame PSNRs, are measured again. Every record also holds its
+// divergence check (bench_divergence.h).
 #ifndef MESHVID_TOOLS_BENCH_BENCH_RUNNER_H_
 #define MESHVID_TOOLS_BENCH_BENCH_RUNNER_H_
 

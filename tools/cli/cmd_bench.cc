@@ -11,9 +11,11 @@
 
 #include "format/output_file.h"
 #include "tools/bench/baseline.h"
+#include "tools/bench/bench_divergence.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_runner.h"
 #include "tools/bench/child_process.h"
+#include "tools/bench/eval_figures.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
@@ -119,6 +121,17 @@ int WriteReport(const BenchArguments& args, const BenchOptions& options) {
   if (records->empty()) {
     return ReportError(
         NotFoundError("no bench record in " + options.results_dir + ": run meshvid bench first"));
+  }
+  // Records written before the per-frame figures: from the eval JSONs still in the work folder
+  // (in memory only; the next bench run stores them).
+  int filled = 0;
+  for (BenchRecord& record : *records) {
+    filled += BackfillFrameFigures(record, options.work_dir);
+    ComputeDivergence(record);
+  }
+  if (filled > 0 && !args.quiet) {
+    std::fprintf(stderr, "Per-frame figures of %d point(s) read from their eval JSON in %s\n",
+                 filled, options.work_dir.c_str());
   }
   const std::string report =
       args.report.empty() ? (fs::path(options.results_dir).parent_path() / "RESULTS.md").string()
@@ -302,7 +315,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--keep-work", args->keep_work,
                 "Keep the baseline's decoded frames (large) after evaluating them");
   cmd->add_flag("--report-only", args->report_only,
-                "Only redraw the plots and RESULTS.md from the records in OUT");
+                "Only redraw the plots and RESULTS.md from the records in OUT (per-frame\n"
+                "figures older records lack are read from the eval JSON in the work folder)");
   cmd->add_flag("--no-plots", args->no_plots, "Do not run gnuplot");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no step lines");
   cmd->callback([args, exit_code, cmd] {

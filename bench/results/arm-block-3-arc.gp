@@ -2,62 +2,27 @@
 # Run from this folder: gnuplot arm-block-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "arm-block-3-arc-rd.png"
-set title "arm-block, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "arm-block, 3 views (arc), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.69671 45.3409
-2.58161 45.3519
-3.69718 45.3510
-4.88263 45.3505
+0.294183 44.3927
+0.65977 44.7077
+3.08247 44.7409
 EOD
 $s1 << EOD
-0.54114 42.7662
-0.678073 42.7843
-0.957527 42.7843
-1.44523 42.7332
+0.294183 44.4360
+0.65977 44.7786
+3.08247 44.8138
 EOD
 $s2 << EOD
-0.54114 42.9275
-0.678073 42.9405
-0.957527 42.9480
-1.44523 42.9205
+0.294183 44.4732
+0.65977 44.8300
+3.08247 44.8782
 EOD
-$s3 << EOD
-0.54114 43.1010
-0.678073 43.0989
-0.957527 43.0906
-1.44523 43.0671
-EOD
-$s4 << EOD
-6.8645 43.0697
-EOD
-$s5 << EOD
-0.42932 42.6114
-0.758813 42.7007
-1.86165 42.7380
-3.40776 42.7436
-EOD
-$s6 << EOD
-0.42932 42.7471
-0.758813 42.8921
-1.86165 42.9206
-3.40776 42.9266
-EOD
-$s7 << EOD
-0.42932 42.9836
-0.758813 43.0555
-1.86165 43.0601
-3.40776 43.0586
-EOD
-plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

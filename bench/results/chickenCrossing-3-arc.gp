@@ -2,55 +2,27 @@
 # Run from this folder: gnuplot chickenCrossing-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "chickenCrossing-3-arc-rd.png"
-set title "chickenCrossing, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "chickenCrossing, 3 views (arc), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.91021 35.2032
-2.37259 35.1862
-3.49124 35.2041
-4.89975 35.2042
+0.858763 31.9638
+2.07939 31.8668
+9.15558 31.9107
 EOD
 $s1 << EOD
-1.91021 35.5839
-2.37259 35.5920
-3.49124 35.5938
-4.89975 35.5905
+0.858763 32.3646
+2.07939 32.3130
+9.15558 32.3531
 EOD
 $s2 << EOD
-1.91021 35.8910
-2.37259 35.9026
-3.49124 35.8640
-4.89975 35.8425
+0.858763 32.7944
+2.07939 32.6786
+9.15558 32.6669
 EOD
-$s3 << EOD
-22.4931 35.8331
-EOD
-$s4 << EOD
-1.40974 35.0241
-3.09963 35.1594
-7.3406 35.1907
-12.0076 35.1998
-EOD
-$s5 << EOD
-1.40974 35.3619
-3.09963 35.5468
-7.3406 35.5699
-12.0076 35.5853
-EOD
-$s6 << EOD
-1.40974 35.7023
-3.09963 35.8277
-7.3406 35.8198
-12.0076 35.8232
-EOD
-plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s4 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s5 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s6 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

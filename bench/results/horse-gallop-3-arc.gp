@@ -2,62 +2,34 @@
 # Run from this folder: gnuplot horse-gallop-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "horse-gallop-3-arc-rd.png"
-set title "horse-gallop, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "horse-gallop, 3 views (arc), 48 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-2.05642 40.9817
-3.12637 40.9693
-4.52428 40.9686
-6.03181 40.9688
+2.04743 41.2714
+3.133 41.2614
+4.5288 41.2612
+6.04201 41.2610
 EOD
 $s1 << EOD
-0.91098 32.0133
-1.17967 32.0231
-1.682 32.0266
-2.20467 32.0227
+3.78774 40.9603
+4.1544 40.9981
+6.8575 41.0081
 EOD
 $s2 << EOD
-0.91098 31.4274
-1.17967 31.4284
-1.682 31.4259
-2.20467 31.4320
+3.78774 41.0617
+4.1544 41.0966
+6.8575 41.1066
 EOD
 $s3 << EOD
-0.91098 31.0502
-1.17967 31.0455
-1.682 31.0237
-2.20467 31.0242
-EOD
-$s4 << EOD
-10.7916 31.0109
-EOD
-$s5 << EOD
-0.69168 32.0760
-1.44599 31.9810
-3.21693 32.0072
-5.20929 32.0140
-EOD
-$s6 << EOD
-0.69168 31.4986
-1.44599 31.3920
-3.21693 31.4175
-5.20929 31.4214
-EOD
-$s7 << EOD
-0.69168 31.1721
-1.44599 31.0246
-3.21693 31.0054
-5.20929 31.0076
+3.78774 41.2258
+4.1544 41.1857
+6.8575 41.1652
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

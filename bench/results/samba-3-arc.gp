@@ -2,62 +2,34 @@
 # Run from this folder: gnuplot samba-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "samba-3-arc-rd.png"
-set title "samba, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "samba, 3 views (arc), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.69773 41.5086
-2.59577 41.5198
-3.75366 41.5210
-5.0008 41.5214
+1.86708 44.8471
+2.86389 44.8801
+4.16503 44.8821
+5.56517 44.8822
 EOD
 $s1 << EOD
-0.58468 41.9204
-0.707527 41.9585
-0.920007 41.9285
-1.24206 41.9243
+1.0643 43.8770
+1.43095 43.9030
+3.71292 43.9291
 EOD
 $s2 << EOD
-0.58468 41.8862
-0.707527 41.9117
-0.920007 41.8917
-1.24206 41.8832
+1.0643 43.9596
+1.43095 44.0025
+3.71292 44.0139
 EOD
 $s3 << EOD
-0.58468 41.8775
-0.707527 41.8824
-0.920007 41.8589
-1.24206 41.8414
-EOD
-$s4 << EOD
-7.64705 41.8448
-EOD
-$s5 << EOD
-0.505253 41.9273
-0.751687 41.9213
-1.56183 41.9285
-2.8988 41.9379
-EOD
-$s6 << EOD
-0.505253 41.8493
-0.751687 41.8860
-1.56183 41.8878
-2.8988 41.8936
-EOD
-$s7 << EOD
-0.505253 41.8273
-0.751687 41.8705
-1.56183 41.8465
-2.8988 41.8406
+1.0643 44.0552
+1.43095 44.1053
+3.71292 44.0739
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -109,9 +109,22 @@ TEST(DataFit, CountsPointsBeyondTheRepresentableDistance) {
   const std::vector<Eigen::Vector3f> surface = {{0, 0, 0}, {1, 0, 0}};
   const std::vector<Eigen::Vector3f> points = {
       {0, 0.01f, 0}, {1, 0.02f, 0}, {0, -0.03f, 0}, {1, 0, 0.04f}, {0.5f, 0.6f, 0}};
-  const DataFit fit = MeasureDataFit(surface, points, 0.05f);
+  const DataFit fit = MeasureDataFit(surface, points, 0.05f, 0.5f);
   EXPECT_EQ(fit.points, 5u);
   EXPECT_NEAR(fit.unexplained_share, 0.2, 1e-9);
+  EXPECT_EQ(fit.stray_share, 0);
+  // A piece of surface thrown far from every data point strays.
+  const std::vector<Eigen::Vector3f> thrown = {{0, 0, 0}, {1, 0, 0}, {5, 0, 0}, {0.2f, 0, 0}};
+  const DataFit stray = MeasureDataFit(thrown, points, 0.05f, 0.5f);
+  EXPECT_NEAR(stray.stray_share, 0.25, 1e-9);
+  EXPECT_NEAR(stray.farthest_from_data, 4.0, 1e-3);
+  EXPECT_FALSE(StillExplains(fit, stray, 0.1));
+  // However small its share, a piece thrown farther than the stray distance ends the group.
+  EXPECT_FALSE(StillExplains(fit, stray, 0.3));
+  const std::vector<Eigen::Vector3f> near = {{0, 0, 0}, {1, 0, 0}, {1.4f, 0, 0}, {0.2f, 0, 0}};
+  const DataFit slightly = MeasureDataFit(near, points, 0.05f, 0.5f);
+  EXPECT_NEAR(slightly.stray_share, 0, 1e-9);
+  EXPECT_TRUE(StillExplains(fit, slightly, 0.02));
   EXPECT_TRUE(StillExplains(fit, fit, 0));
   DataFit worse = fit;
   worse.unexplained_share += 0.1;

@@ -36,7 +36,7 @@ struct Sums {
 
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
-                       float representable_distance) {
+                       float representable_distance, float stray_distance) {
   DataFit fit;
   fit.points = data_points.size();
   if (data_points.empty()) return fit;
@@ -67,13 +67,44 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
       });
   fit.unexplained_share = double(sums.unexplained) / double(data_points.size());
   fit.rms_distance = std::sqrt(sums.squares / double(data_points.size()));
+  // The other way: surface samples with no data point within the stray distance.
+  const SampleCloud data{data_points};
+  const SampleTree data_tree(3, data, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const float stray_squared = stray_distance * stray_distance;
+  struct Strays {
+    std::size_t count = 0;
+    float farthest_squared = 0;
+  };
+  const Strays strays = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, surface_samples.size(), 2048), Strays{},
+      [&](const tbb::blocked_range<std::size_t>& range, Strays partial) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          std::uint32_t nearest = 0;
+          float squared = 0;
+          data_tree.knnSearch(surface_samples[i].data(), 1, &nearest, &squared);
+          partial.count += squared > stray_squared;
+          partial.farthest_squared = std::max(partial.farthest_squared, squared);
+        }
+        return partial;
+      },
+      [](Strays a, const Strays& b) {
+        a.count += b.count;
+        a.farthest_squared = std::max(a.farthest_squared, b.farthest_squared);
+        return a;
+      });
+  fit.stray_share = double(strays.count) / double(surface_samples.size());
+  fit.farthest_from_data = std::sqrt(double(strays.farthest_squared));
+  fit.stray_distance = stray_distance;
   return fit;
 }
 
 bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold) {
   if (frame.points == 0) return true;
   return frame.unexplained_share <=
-         std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold;
+             std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold &&
+         frame.stray_share <=
+             std::min(key_frame.stray_share, kMostUnexplainedAtKeyFrame) + threshold &&
+         frame.farthest_from_data <= key_frame.farthest_from_data + frame.stray_distance;
 }
 
 }  // namespace meshvid

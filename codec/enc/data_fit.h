@@ -17,25 +17,35 @@ struct DataFit {
   double unexplained_share = 0;
   double rms_distance = 0;  ///< root mean square point-to-surface distance (sample-based)
   std::size_t points = 0;   ///< points measured (0: the frame had no data)
+  /// Share of the surface samples farther than the stray distance from every data point:
+  /// surface the motion threw where no data is (a closed body's unseen side stays nearer).
+  double stray_share = 0;
+  /// The farthest any surface sample is from the data (0 without data).
+  double farthest_from_data = 0;
+  /// The stray distance this fit was measured with.
+  double stray_distance = 0;
 };
 
 /// Measures how far `data_points` lie from the surface sampled by `surface_samples` (nearest
 /// sample, k-d tree; samples should be much denser than `representable_distance`). A point is
-/// unexplained when it is farther than `representable_distance`.
+/// unexplained when it is farther than `representable_distance`; a surface sample strays when
+/// it is farther than `stray_distance` from every data point.
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
-                       float representable_distance);
+                       float representable_distance, float stray_distance);
 
 /// The share of a key frame's points its own base may leave unexplained: beyond it the fusion
 /// failed (a Poisson surface that lost most of the subject). Measured on key frames: samba
 /// 0.0, arm-block 0.005, horse-gallop 0.05-0.09; a failed horse-gallop fusion 0.92.
 inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 
-/// Whether the tracked surface still explains a frame: its unexplained share has grown by at
-/// most `threshold` over the key frame's (where the base was fused from the data itself),
-/// counted as at most kMostUnexplainedAtKeyFrame (a key frame whose fusion failed does not
-/// excuse the frames after it). A frame without data is explained (nothing contradicts the
-/// motion).
+/// Whether the tracked surface still explains a frame: its unexplained share, and its stray
+/// share, have each grown by at most `threshold` over the key frame's (where the base was
+/// fused from the data itself), counted as at most kMostUnexplainedAtKeyFrame (a key frame
+/// whose fusion failed does not excuse the frames after it); and no part of the surface is
+/// farther from the data than the key frame's farthest plus the stray distance (a patch the
+/// motion threw away, however small). A frame without data is explained (nothing
+/// contradicts the motion).
 bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold);
 
 }  // namespace meshvid

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -61,7 +62,7 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
   std::vector<Eigen::Vector3f> samples, directions;
   EvaluateSampleFrames(lattice, lattice.levels(), base.positions, ComputeVertexNormals(base),
                        &samples, &directions);
-  return MeasureDataFit(samples, points, distance);
+  return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity());
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
@@ -178,21 +179,25 @@ void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
 class FitMeter {
  public:
   FitMeter(const TriangleMesh& base, const MotionModel& motion, const RegularSubdivision& lattice,
-           float representable_distance)
-      : base_(base), motion_(motion), lattice_(lattice), distance_(representable_distance) {}
+           float representable_distance, float stray_distance)
+      : base_(base),
+        motion_(motion),
+        lattice_(lattice),
+        distance_(representable_distance),
+        stray_distance_(stray_distance) {}
   DataFit Measure(const std::vector<RigidTransform>& transforms,
                   const std::vector<Eigen::Vector3f>& points) {
     PoseVertices(motion_, transforms, base_.positions, &posed_);
     ComputeVertexNormals(posed_, base_.triangles, &normals_);
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    return MeasureDataFit(samples_, points, distance_);
+    return MeasureDataFit(samples_, points, distance_, stray_distance_);
   }
 
  private:
   const TriangleMesh& base_;
   const MotionModel& motion_;
   const RegularSubdivision& lattice_;
-  float distance_;
+  float distance_, stray_distance_;
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
 };
 
@@ -341,7 +346,9 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     stop = std::min(ctx.end, start + window);
     MESHVID_ASSIGN_OR_RETURN(segmented,
                              SegmentKeyGroup(ctx, topology, start, stop, 1, &proxies, &analysis));
-    meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance);
+    // Stray: farther from every data point than a correspondence may reach.
+    meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance,
+                  ctx.lengths.max_distance);
     key_fit = meter->Measure(tracks[0], proxies[start].points);
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.worst_unexplained = key_fit.unexplained_share;

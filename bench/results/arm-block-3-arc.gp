@@ -9,19 +9,19 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.294183 44.3927
-0.65977 44.7077
-3.08247 44.7409
+1.07399 45.4661
+1.47848 45.9269
+4.0273 45.8965
 EOD
 $s1 << EOD
-0.294183 44.4360
-0.65977 44.7786
-3.08247 44.8138
+1.07399 45.5371
+1.47848 46.0240
+4.0273 45.9929
 EOD
 $s2 << EOD
-0.294183 44.4732
-0.65977 44.8300
-3.08247 44.8782
+1.07399 45.5833
+1.47848 46.1069
+4.0273 46.0743
 EOD
 plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
      $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \

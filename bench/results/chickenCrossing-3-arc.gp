@@ -9,19 +9,19 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.858763 31.9638
-2.07939 31.8668
-9.15558 31.9107
+2.24444 34.9889
+2.77716 34.9380
+9.49082 35.1287
 EOD
 $s1 << EOD
-0.858763 32.3646
-2.07939 32.3130
-9.15558 32.3531
+2.24444 35.3620
+2.77716 35.2981
+9.49082 35.5094
 EOD
 $s2 << EOD
-0.858763 32.7944
-2.07939 32.6786
-9.15558 32.6669
+2.24444 35.7561
+2.77716 35.6245
+9.49082 35.7863
 EOD
 plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
      $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \

@@ -15,19 +15,19 @@ $s0 << EOD
 5.56517 44.8822
 EOD
 $s1 << EOD
-1.0643 43.8770
-1.43095 43.9030
-3.71292 43.9291
+1.16798 44.0768
+1.59338 44.1607
+3.79122 44.2281
 EOD
 $s2 << EOD
-1.0643 43.9596
-1.43095 44.0025
-3.71292 44.0139
+1.16798 44.1726
+1.59338 44.2543
+3.79122 44.3229
 EOD
 $s3 << EOD
-1.0643 44.0552
-1.43095 44.1053
-3.71292 44.0739
+1.16798 44.2853
+1.59338 44.3551
+3.79122 44.3937
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -4,13 +4,12 @@
 #include <map>
 #include <string>
 
-#include <nanoflann.hpp>
-
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/encode.h>
 #include <draco/core/encoder_buffer.h>
 #include <draco/mesh/mesh.h>
 
+#include "codec/common/point_tree.h"
 #include "codec/dec/base_mesh_decoder.h"
 
 namespace meshvid {
@@ -64,17 +63,6 @@ Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings)
   return Status::Ok();
 }
 
-/// nanoflann's view of decoded positions.
-struct PositionCloud {
-  const std::vector<Eigen::Vector3f>* points;
-  std::size_t kdtree_get_point_count() const { return points->size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
 /// Finds where Draco put every input vertex and triangle: each input vertex must have exactly
 /// one decoded vertex within a quantisation step, and the triangles must be the same up to
 /// order and rotation. False (nothing filled) otherwise.
@@ -84,10 +72,8 @@ bool MatchDecodedOrder(const TriangleMesh& mesh, int position_bits, EncodedBaseM
       decoded.triangle_count() != mesh.triangle_count()) {
     return false;
   }
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<
-      nanoflann::L2_Simple_Adaptor<float, PositionCloud>, PositionCloud, 3, std::uint32_t>;
-  const PositionCloud cloud{&decoded.positions};
-  const Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const PointCloud cloud{decoded.positions};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
   std::vector<std::uint32_t> vertex_in_decoded(mesh.vertex_count());
   std::vector<char> taken(decoded.vertex_count(), 0);

@@ -5,27 +5,13 @@
 #include <cstdint>
 #include <memory>
 
-#include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "codec/common/point_tree.h"
+
 namespace meshvid {
 namespace {
-
-/// nanoflann's view of the surface samples.
-struct SampleCloud {
-  std::span<const Eigen::Vector3f> points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using SampleTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, SampleCloud>,
-                                        SampleCloud, 3, std::uint32_t>;
 
 struct Sums {
   double squares = 0;
@@ -45,8 +31,8 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
     fit.rms_distance = std::numeric_limits<double>::infinity();
     return fit;
   }
-  const SampleCloud cloud{surface_samples};
-  const SampleTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const PointCloud cloud{surface_samples};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const float limit_squared = representable_distance * representable_distance;
   const Sums sums = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, data_points.size(), 2048), Sums{},
@@ -68,8 +54,9 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   fit.unexplained_share = double(sums.unexplained) / double(data_points.size());
   fit.rms_distance = std::sqrt(sums.squares / double(data_points.size()));
   // The other way: surface samples with no data point within the stray distance.
-  const SampleCloud data{data_points};
-  const SampleTree data_tree(3, data, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  const PointCloud data{data_points};
+  const PointTree data_tree(3, data,
+                            nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const float stray_squared = stray_distance * stray_distance;
   struct Strays {
     std::size_t count = 0;

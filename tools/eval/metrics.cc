@@ -6,37 +6,22 @@
 #include <memory>
 #include <vector>
 
-#include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "tools/eval/sampling.h"
+#include "codec/common/point_tree.h"
 #include "tools/eval/surface_distance.h"
 
 namespace meshvid {
 namespace {
 
-/// nanoflann's view of a sample set.
-struct SampleCloud {
-  const std::vector<Eigen::Vector3f>* points;
-  std::size_t kdtree_get_point_count() const { return points->size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using SampleTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, SampleCloud>,
-                                        SampleCloud, 3, std::uint32_t>;
-
 /// One surface prepared for measurement: its samples, their k-d tree, its exact distance.
 struct PreparedSurface {
   SurfaceSamples samples;
-  SampleCloud cloud;
-  std::unique_ptr<SampleTree> tree;
+  PointCloud cloud;
+  std::unique_ptr<PointTree> tree;
   std::unique_ptr<SurfaceDistance> surface;
 };
 
@@ -54,12 +39,12 @@ Status Prepare(const TriangleMesh& mesh, const char* what, const MetricOptions& 
   StatusOr<SurfaceSamples> samples = SampleSurface(mesh, options.samples, options.seed);
   if (!samples.ok()) return samples.status().WithContext(what);
   out->samples = std::move(samples).value();
-  out->cloud.points = &out->samples.points;
+  out->cloud.points = out->samples.points;
   Status status;
   tbb::parallel_invoke(
       [&] {
-        out->tree = std::make_unique<SampleTree>(3, out->cloud,
-                                                 nanoflann::KDTreeSingleIndexAdaptorParams(10));
+        out->tree = std::make_unique<PointTree>(
+            3, out->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
       },
       [&] {
         StatusOr<std::unique_ptr<SurfaceDistance>> surface = SurfaceDistance::Build(mesh);

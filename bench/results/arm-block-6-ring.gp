@@ -2,62 +2,27 @@
 # Run from this folder: gnuplot arm-block-6-ring.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "arm-block-6-ring-rd.png"
-set title "arm-block, 6 views (ring), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "arm-block, 6 views (ring), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.902213 54.3226
-1.37857 54.3114
-1.95521 54.3103
-2.50649 54.3117
+0.39863 53.2933
+0.923483 53.2987
+4.16744 52.9223
 EOD
 $s1 << EOD
-0.469307 52.1383
-0.70888 52.2311
-1.16364 52.3793
-1.95926 52.4017
+0.39863 53.9185
+0.923483 53.7819
+4.16744 53.0876
 EOD
 $s2 << EOD
-0.469307 52.5175
-0.70888 52.6674
-1.16364 52.7065
-1.95926 52.7072
+0.39863 54.2003
+0.923483 53.9764
+4.16744 53.0710
 EOD
-$s3 << EOD
-0.469307 52.5694
-0.70888 52.6676
-1.16364 52.6534
-1.95926 52.6519
-EOD
-$s4 << EOD
-7.79412 52.6595
-EOD
-$s5 << EOD
-0.37722 51.4580
-0.948473 52.1462
-2.30246 52.3644
-3.83651 52.3951
-EOD
-$s6 << EOD
-0.37722 52.0014
-0.948473 52.6073
-2.30246 52.6869
-3.83651 52.7058
-EOD
-$s7 << EOD
-0.37722 52.1991
-0.948473 52.5888
-2.30246 52.6278
-3.83651 52.6488
-EOD
-plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -2,62 +2,34 @@
 # Run from this folder: gnuplot samba-6-ring.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "samba-6-ring-rd.png"
-set title "samba, 6 views (ring), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "samba, 6 views (ring), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.916827 56.9273
-1.41569 57.2724
-2.03039 57.2909
-2.65653 57.2928
+0.893877 58.9005
+1.39026 59.3446
+1.98556 59.3736
+2.59332 59.3753
 EOD
 $s1 << EOD
-0.437813 48.2947
-0.6157 48.3597
-0.949353 48.4128
-1.46759 48.4185
+0.906673 56.2811
+1.29483 56.8286
+3.86411 57.0117
 EOD
 $s2 << EOD
-0.437813 47.8199
-0.6157 47.8560
-0.949353 47.8458
-1.46759 47.8428
+0.906673 56.3196
+1.29483 56.7072
+3.86411 56.8561
 EOD
 $s3 << EOD
-0.437813 47.4864
-0.6157 47.4897
-0.949353 47.3915
-1.46759 47.3559
-EOD
-$s4 << EOD
-7.54788 47.3430
-EOD
-$s5 << EOD
-0.364133 48.1138
-0.73128 48.3607
-1.80283 48.4116
-3.26047 48.4245
-EOD
-$s6 << EOD
-0.364133 47.9524
-0.73128 47.8329
-1.80283 47.8280
-3.26047 47.8373
-EOD
-$s7 << EOD
-0.364133 47.8306
-0.73128 47.4834
-1.80283 47.3516
-3.26047 47.3424
+0.906673 56.1096
+1.29483 56.4157
+3.86411 56.4826
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

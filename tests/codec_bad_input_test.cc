@@ -5,9 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <string>
 
 #include "codec/common/compression.h"
@@ -15,25 +12,9 @@
 #include "codec/dec/motion_decoder.h"
 #include "codec/dec/mvid_decoder.h"
 #include "format/byte_io.h"
+#include "tests/allocation_tracker.h"
 #include "tests/mvid_mutants.h"
 #include "tests/test_util.h"
-
-// Largest single allocation while g_track_allocations is set (replaces global new/delete).
-static std::atomic<bool> g_track_allocations{false};
-static std::atomic<size_t> g_largest_allocation{0};
-
-void* operator new(size_t size) {
-  if (g_track_allocations.load(std::memory_order_relaxed)) {
-    size_t seen = g_largest_allocation.load();
-    while (size > seen && !g_largest_allocation.compare_exchange_weak(seen, size)) {
-    }
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-// Not inlined, so the compiler does not see free() meet memory from new (a false warning).
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, size_t) noexcept { std::free(p); }
 
 namespace meshvid {
 namespace {
@@ -42,16 +23,7 @@ const std::string kGolden = std::string(MESHVID_GOLDEN_DIR) + "/sphere.v1.mvid";
 /// Far below the gigabytes the corrupt counts below would ask for.
 constexpr size_t kAllocationLimit = 4u << 20;
 
-/// Tracks the largest allocation made while it lives.
-class AllocationTracker {
- public:
-  AllocationTracker() {
-    g_largest_allocation = 0;
-    g_track_allocations = true;
-  }
-  ~AllocationTracker() { g_track_allocations = false; }
-  size_t largest() const { return g_largest_allocation.load(); }
-};
+using testing::AllocationTracker;
 
 std::vector<uint8_t> GoldenBytes() {
   const std::string text = testing::ReadFile(kGolden);

@@ -3,9 +3,6 @@
 // every complete group of frames before a cut.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <sstream>
 
 #include "format/byte_io.h"
@@ -15,22 +12,7 @@
 #include "format/crc32c.h"
 #include "format/stream_reader.h"
 #include "format/validate.h"
-
-// Largest single allocation while g_track_allocations is set (replaces global new/delete).
-static std::atomic<bool> g_track_allocations{false};
-static std::atomic<size_t> g_largest_allocation{0};
-
-void* operator new(size_t size) {
-  if (g_track_allocations.load(std::memory_order_relaxed)) {
-    size_t seen = g_largest_allocation.load();
-    while (size > seen && !g_largest_allocation.compare_exchange_weak(seen, size)) {
-    }
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, size_t) noexcept { std::free(p); }
+#include "tests/allocation_tracker.h"
 
 namespace meshvid {
 namespace {
@@ -172,8 +154,7 @@ TEST(FormatBadInputTest, AbsurdSizesFailWithoutBigAllocations) {
   // HEAD payload_size = 2^60.
   std::vector<uint8_t> file = original;
   for (int i = 0; i < 8; ++i) file[16 + i] = i == 7 ? 0x10 : 0;
-  g_largest_allocation = 0;
-  g_track_allocations = true;
+  testing::AllocationTracker tracker;
   const Status open = ContainerReader::OpenMemory(file, "big.mvid").status();
   const ValidationReport report = ValidateContainer(file, "big.mvid");
   std::istringstream in(std::string(file.begin(), file.end()));
@@ -183,8 +164,8 @@ TEST(FormatBadInputTest, AbsurdSizesFailWithoutBigAllocations) {
   const Status stepped =
       StreamReader(in2, "pipe", {.max_chunk_payload = ~uint64_t{0}, .read_step = 4096})
           .ReadHeader().status();
-  g_track_allocations = false;
-  EXPECT_LT(g_largest_allocation.load(), 64u * 1024u);
+  tracker.Stop();
+  EXPECT_LT(tracker.largest(), 64u * 1024u);
   EXPECT_EQ(open.message(), "big.mvid: chunk 'HEAD' at offset 8: payload_size "
                             "1152921504606846976 exceeds the " +
                                 std::to_string(original.size() - 28) +
@@ -201,11 +182,10 @@ TEST(FormatBadInputTest, AbsurdCountsWithValidCrcFailWithoutBigAllocations) {
   const size_t stream_count_at = kPreambleSize + kChunkHeaderSize + 20;
   for (int i = 0; i < 4; ++i) file[stream_count_at + i] = 0xFF;
   Reseal(&file, kPreambleSize);
-  g_largest_allocation = 0;
-  g_track_allocations = true;
+  testing::AllocationTracker tracker;
   const Status open = ContainerReader::OpenMemory(file, "n.mvid").status();
-  g_track_allocations = false;
-  EXPECT_LT(g_largest_allocation.load(), 64u * 1024u);
+  tracker.Stop();
+  EXPECT_LT(tracker.largest(), 64u * 1024u);
   EXPECT_EQ(open.message(), "n.mvid: chunk 'HEAD' at offset 8: stream_count 4294967295 "
                             "exceeds the limit of 64");
 
@@ -220,11 +200,10 @@ TEST(FormatBadInputTest, AbsurdCountsWithValidCrcFailWithoutBigAllocations) {
   auto reader = ContainerReader::OpenMemory(file, "n.mvid");
   ASSERT_TRUE(reader.ok());
   EXPECT_TRUE(reader->used_index());
-  g_largest_allocation = 0;
-  g_track_allocations = true;
+  testing::AllocationTracker gof_tracker;
   const Status gof = reader->ReadGof(1).status();
-  g_track_allocations = false;
-  EXPECT_LT(g_largest_allocation.load(), 64u * 1024u);
+  gof_tracker.Stop();
+  EXPECT_LT(gof_tracker.largest(), 64u * 1024u);
   EXPECT_EQ(gof.message(), "n.mvid: chunk 'GOF ' at offset " + std::to_string(gof1) +
                                ": packet_count 2130706434 is more than the remaining bytes can "
                                "hold (at most 3)");

@@ -23,19 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// A number from a meshvid JSON file ("inf" strings are PSNRs of exact frames).
-double JsonNumber(const json& j, const char* key) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return std::numeric_limits<double>::quiet_NaN();
-  if (it->is_string()) {
-    const std::string s = it->get<std::string>();
-    if (s == "inf") return std::numeric_limits<double>::infinity();
-    if (s == "-inf") return -std::numeric_limits<double>::infinity();
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return it->is_number() ? it->get<double>() : std::numeric_limits<double>::quiet_NaN();
-}
-
 StatusOr<json> ReadJsonFile(const std::string& path) {
   MESHVID_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
   json j = json::parse(text, nullptr, /*allow_exceptions=*/false);

@@ -13,8 +13,16 @@ namespace {
 
 using nlohmann::json;
 
-/// A number of meshvid eval's JSON: "inf"/"-inf" strings are PSNRs of exact frames; a
-/// missing key, null or anything else is NaN.
+/// Equal up to rounding in the last digits (a record and an eval JSON both keep doubles
+/// whole), or both NaN.
+bool SameFigure(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
+  if (std::isinf(a) || std::isinf(b)) return a == b;
+  return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b));
+}
+
+}  // namespace
+
 double JsonNumber(const json& j, const char* key) {
   const auto it = j.find(key);
   if (it == j.end() || it->is_null()) return std::numeric_limits<double>::quiet_NaN();
@@ -26,16 +34,6 @@ double JsonNumber(const json& j, const char* key) {
   }
   return it->is_number() ? it->get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
-
-/// Equal up to rounding in the last digits (a record and an eval JSON both keep doubles
-/// whole), or both NaN.
-bool SameFigure(double a, double b) {
-  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
-  if (std::isinf(a) || std::isinf(b)) return a == b;
-  return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b));
-}
-
-}  // namespace
 
 StatusOr<EvalFigures> ParseEvalFigures(const std::string& text, const std::string& name) {
   const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);

@@ -13,9 +13,6 @@ pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)                      # 
 pkg_check_modules(FFMPEG REQUIRED IMPORTED_TARGET libavcodec libavformat libavutil)  # libav*-dev
 find_package(draco REQUIRED)                         # libdraco-dev: draco::draco
 find_package(OpenMesh REQUIRED CONFIG)               # libopenmesh-dev: OpenMeshCore, OpenMeshTools
-# CGAL is header-only here (CGAL::CGAL); its Poisson reconstruction fuses views. It pulls in
-# GMP and MPFR (libgmp-dev, libmpfr-dev) and Boost headers (libboost-dev, a dependency).
-find_package(CGAL 5.5 REQUIRED)                      # libcgal-dev
 
 if(MESHVID_BUILD_TESTS)
   find_package(GTest REQUIRED)                       # libgtest-dev

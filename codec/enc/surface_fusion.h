@@ -1,6 +1,6 @@
 // Fusion of several range meshes of one instant (the views of one frame, in world
-// coordinates) into one surface: the automatic base mesh's first step (method.md "Base mesh"),
-// and the per-frame baseline of `meshvid bench`.
+// coordinates) into one surface: the automatic base mesh of every key group, and the
+// per-frame baseline of `meshvid bench`.
 #ifndef MESHVID_CODEC_ENC_SURFACE_FUSION_H_
 #define MESHVID_CODEC_ENC_SURFACE_FUSION_H_
 
@@ -14,33 +14,38 @@ namespace meshvid {
 
 /// Settings of the view fusion.
 struct SurfaceFusionOptions {
-  /// Sample spacing of the output surface in scene units; 0: derived from the data (its
-  /// average point spacing).
+  /// Voxel size of the distance volume in scene units (about the output's edge length);
+  /// 0: derived from the data, the views' sample spacing (or the thinning grid's cell when the
+  /// input was thinned) times voxel_scale.
   double spacing = 0;
-  /// Most input points used; denser input is thinned on a grid first (speed bound).
-  std::size_t max_points = 60000;
-  /// Output triangle size bound: largest radius of a triangle's surface Delaunay ball, in
-  /// spacings (CGAL's sm_radius; the default lets flat parts get large triangles).
-  double max_triangle_radius = 30;
-  /// Output accuracy bound: largest distance between a triangle's Delaunay-ball centre and
-  /// the reconstructed implicit surface, in spacings (CGAL's sm_distance). Smaller values
-  /// give more triangles where the surface curves.
-  double max_surface_distance = 0.375;
-  /// Memory bound: the meshing stops with an error once its Delaunay triangulation holds
-  /// this many vertices (0: 10 x max_points). A Poisson function whose level set runs far
-  /// from the data (inconsistent normals, thin open parts) would otherwise grow until the
-  /// machine runs out of memory.
-  std::size_t max_mesher_vertices = 0;
+  /// Multiplies the derived voxel size (ignored when spacing is set).
+  double voxel_scale = 1.0;
+  /// Most input points used; denser input is thinned on a grid first (speed bound). Three
+  /// 640x480 views of a body hold about 100,000.
+  std::size_t max_points = 150000;
+  /// Half-width of the band of voxels each point writes, in voxel sizes.
+  double truncation_voxels = 2.5;
+  /// The surface ends this many voxel sizes past the edge of the data, measured across the
+  /// points' normals (see DistanceVolumeSettings::support_voxels).
+  double support_voxels = 1.5;
+  /// Memory bound: the voxel size grows until the volume's estimated size fits (about 12
+  /// bytes per voxel).
+  std::size_t max_voxels = 20'000'000;
+  /// Connected pieces with fewer than this share of the triangles are dropped (specks of
+  /// noise); the largest piece is always kept.
+  double min_piece_share = 0.005;
 };
 
-/// Fuses range meshes into one closed surface (watertight where the data allows), oriented
-/// with normals pointing out of the captured object. Views may overlap, be noisy and have
-/// holes; their triangles must face their sensor (out of the object), which orients the
-/// points' normals (the views' own normals are used if present). Poisson surface
-/// reconstruction (CGAL), contoured closed; the largest connected component is kept, with
-/// area-weighted vertex normals. The result depends on the input only (same views, same
-/// mesh, vertex for vertex). Fails if the views hold too few points or lie in one plane, or
-/// if the meshing outgrows options.max_mesher_vertices.
+/// Fuses range meshes into one surface, oriented with normals pointing out of the captured
+/// object. Views may overlap, be noisy and have holes; their triangles must face their sensor
+/// (out of the object), which orients the points' normals (the views' own normals are used if
+/// present). The points' signed distances are averaged in a sparse volume (DistanceVolume)
+/// whose zero level set is contoured (ContourDistanceVolume): what the views see from all
+/// sides comes out closed, what they leave open stays open (no surface is invented far from
+/// the data), and the two sides of a part thicker than about two voxels stay two sheets.
+/// Time and memory follow the input's size and the voxel count bound. The result depends on
+/// the input only (same views, same mesh, vertex for vertex). Fails if the views hold too
+/// few points, or no surface comes out (e.g. a single line of points).
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
                                        const SurfaceFusionOptions& options = {},
                                        const ProgressCallback& progress = {});

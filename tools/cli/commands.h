@@ -14,6 +14,7 @@ void AddInfoCommand(CLI::App& app, int* exit_code);
 void AddDecodeCommand(CLI::App& app, int* exit_code);
 void AddEncodeCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
+void AddFuseCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

@@ -22,7 +22,10 @@ constexpr int kPackOffset = 1 << (kPackBits - 1);
 
 class TetrahedraMesher {
  public:
-  explicit TetrahedraMesher(const DistanceVolume& volume) : volume_(volume) {}
+  explicit TetrahedraMesher(const DistanceVolume& volume) : volume_(volume) {
+    // A rough estimate of the vertex count (it only saves rehashing as the map grows).
+    vertex_of_edge_.reserve(volume.voxel_count() / 16);
+  }
 
   void AddCube(const VoxelIndex& v, const float distances[8]) {
     for (const std::array<int, 4>& tet : kTetrahedra) AddTetrahedron(v, tet, distances);

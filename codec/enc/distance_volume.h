@@ -27,7 +27,8 @@ using VoxelIndex = Eigen::Vector3i;
 /// How points write into the volume.
 struct DistanceVolumeSettings {
   float voxel_size = 1;  ///< grid step, scene units; > 0
-  /// A point writes the voxels within this many voxel sizes of it (the truncation band).
+  /// A point writes the voxels within this many voxel sizes of it (the truncation band);
+  /// (0, 7]: narrower than the volume's blocks.
   float truncation_voxels = 3;
   /// A voxel is supported (may carry the surface) when some point lies within this many voxel
   /// sizes of it across that point's normal: the surface stops about this far past the edge of
@@ -43,7 +44,8 @@ class DistanceVolume {
   /// An empty volume with its grid anchored at `origin` (any point near the data).
   DistanceVolume(const Eigen::Vector3f& origin, const DistanceVolumeSettings& settings);
 
-  /// Adds every point's contribution.
+  /// Adds every point's contribution (in parallel; the sums, and so the volume, do not depend
+  /// on the number of threads).
   void Integrate(std::span<const OrientedPoint> points);
 
   /// The signed distance at voxel `v` if the data supports it there.

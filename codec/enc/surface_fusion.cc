@@ -130,33 +130,6 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
   RemoveUnreferencedVertices(mesh);
 }
 
-// Puts vertices in lexicographic order of position and triangles in order of their corner
-// indices (each rotated to start at its smallest, keeping its orientation): the output is
-// then a function of the geometry only, not of the order the volume's blocks were made in.
-void Canonicalize(TriangleMesh* mesh) {
-  const std::vector<Eigen::Vector3f>& p = mesh->positions;
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&p](std::uint32_t a, std::uint32_t b) {
-    return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(),
-                                        p[b].data() + 3);
-  });
-  std::vector<std::uint32_t> rank(p.size());
-  std::vector<Eigen::Vector3f> positions(p.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) {
-    rank[order[i]] = i;
-    positions[i] = p[order[i]];
-  }
-  mesh->positions = std::move(positions);
-  for (Triangle& t : mesh->triangles) {
-    t = Triangle(rank[t[0]], rank[t[1]], rank[t[2]]);
-    while (t[0] > t[1] || t[0] > t[2]) t = Triangle(t[1], t[2], t[0]);
-  }
-  std::sort(mesh->triangles.begin(), mesh->triangles.end(), [](const Triangle& a, const Triangle& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  });
-}
-
 }  // namespace
 
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
@@ -171,9 +144,9 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     return InvalidArgumentError("surface fusion spacing must be finite and >= 0");
   }
   if (!finite_positive(options.voxel_scale) || !finite_positive(options.truncation_voxels) ||
-      !finite_positive(options.support_voxels)) {
-    return InvalidArgumentError("surface fusion voxel_scale, truncation_voxels and "
-                                "support_voxels must be finite and > 0");
+      !finite_positive(options.support_voxels) || options.truncation_voxels > 7) {
+    return InvalidArgumentError("surface fusion voxel_scale and support_voxels must be finite "
+                                "and > 0, truncation_voxels in (0, 7]");
   }
   if (!(options.min_piece_share >= 0 && options.min_piece_share <= 1)) {
     return InvalidArgumentError("surface fusion min_piece_share must be in [0, 1]");
@@ -248,7 +221,6 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
         "surface fusion: the views give no surface (too sparse or degenerate for a voxel "
         "size of " + std::to_string(voxel) + ")");
   }
-  Canonicalize(&result);
   result.normals = ComputeVertexNormals(result);
   ReportProgress(progress, "fusion: done", kStages, kStages);
   return result;

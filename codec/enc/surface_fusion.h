@@ -23,7 +23,7 @@ struct SurfaceFusionOptions {
   /// Most input points used; denser input is thinned on a grid first (speed bound). Three
   /// 640x480 views of a body hold about 100,000.
   std::size_t max_points = 150000;
-  /// Half-width of the band of voxels each point writes, in voxel sizes.
+  /// Half-width of the band of voxels each point writes, in voxel sizes; (0, 7].
   double truncation_voxels = 2.5;
   /// The surface ends this many voxel sizes past the edge of the data, measured across the
   /// points' normals (see DistanceVolumeSettings::support_voxels).

@@ -385,6 +385,22 @@ TEST(FuseRangeMeshesTest, ThinPlateFusesAsTwoSheets) {
   EXPECT_GT(down, 1000u);
 }
 
+TEST(FuseRangeMeshesTest, SheetSeenFromBothSidesFusesAsOneOpenSheet) {
+  // A cloth-like sheet with no thickness, seen from above and from below (a ring of sensors):
+  // the two sides' distances cancel unless one side is kept.
+  TriangleMesh above = testing::MakeGridPlane(0.4f, 100);
+  TriangleMesh below = above;
+  for (Vector3f& n : below.normals) n = -n;
+  for (Triangle& t : below.triangles) std::swap(t[1], t[2]);
+  for (Vector3f& p : below.positions) p += Vector3f(0.002f, 0.001f, 0);  // other samples
+  const std::vector<TriangleMesh> views = {above, below};
+  auto fused = FuseRangeMeshes(views);
+  ASSERT_TRUE(fused.ok()) << fused.status().ToString();
+  EXPECT_GT(BoundaryEdgeCount(*fused), 100u);
+  EXPECT_NEAR(SurfaceArea(*fused), 0.16, 0.16 * 0.05);  // one sheet, not two
+  for (const Vector3f& p : fused->positions) EXPECT_LT(std::abs(p.z()), 0.001f) << p.transpose();
+}
+
 TEST(FuseRangeMeshesTest, InvalidInputFails) {
   EXPECT_EQ(FuseRangeMeshes({}).status().code(), StatusCode::kInvalidArgument);
   std::vector<TriangleMesh> tiny = {testing::MakeGridPlane(1.0f, 2)};

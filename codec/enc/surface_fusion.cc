@@ -14,6 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "codec/common/point_tree.h"
 #include "codec/enc/contour_volume.h"
 #include "codec/enc/distance_volume.h"
 
@@ -104,6 +109,58 @@ std::vector<OrientedPoint> Thin(std::vector<OrientedPoint> points, std::size_t m
   return ThinOnGrid(points, box.min(), cell * 4);
 }
 
+// Keeps one side of sheets thinner than a voxel that views see from both sides (a cloth on
+// a ring of sensors): there the two sides' signed distances cancel and no surface could come
+// out. A point is two-sided when a point of opposite normal lies less than a voxel behind it;
+// of those, the ones facing away from the two-sided points' main normal axis are dropped, so
+// such a sheet fuses as one open surface (a fold turning past that axis keeps both sides and
+// may come out broken). Returns how many points were dropped.
+std::size_t KeepOneSideOfTwoSidedSheets(std::vector<OrientedPoint>* points, float voxel) {
+  std::vector<Eigen::Vector3f> positions(points->size());
+  for (std::size_t i = 0; i < points->size(); ++i) positions[i] = (*points)[i].position;
+  const PointCloud cloud{positions};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  tree.buildIndex();
+  constexpr std::size_t kNeighbours = 8;
+  std::vector<char> two_sided(points->size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points->size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    std::uint32_t nearest[kNeighbours];
+    float squared[kNeighbours];
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const OrientedPoint& p = (*points)[i];
+      const std::size_t found = tree.knnSearch(p.position.data(), kNeighbours, nearest, squared);
+      for (std::size_t k = 0; k < found; ++k) {
+        const OrientedPoint& q = (*points)[nearest[k]];
+        const float behind = p.normal.dot(p.position - q.position);
+        if (p.normal.dot(q.normal) < -0.5f && behind > -0.5f * voxel && behind < voxel) {
+          two_sided[i] = 1;
+          break;
+        }
+      }
+    }
+  });
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    if (!two_sided[i]) continue;
+    const Eigen::Vector3d n = (*points)[i].normal.cast<double>();
+    scatter += n * n.transpose();
+    ++count;
+  }
+  if (count == 0) return 0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  const Eigen::Vector3f axis = solver.eigenvectors().col(2).cast<float>();  // largest
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    if (two_sided[i] && (*points)[i].normal.dot(axis) < 0) continue;
+    (*points)[kept++] = (*points)[i];
+  }
+  const std::size_t dropped = points->size() - kept;
+  points->resize(kept);
+  return dropped;
+}
+
 // Keeps the sets of triangles connected through shared vertices that hold at least
 // `min_share` of the triangles, and the largest one in any case.
 void KeepMainPieces(TriangleMesh* mesh, double min_share) {
@@ -170,7 +227,7 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   std::vector<OrientedPoint> gathered = GatherPoints(views);
   const std::size_t gathered_count = gathered.size();
   float thinning_cell = 0;
-  const std::vector<OrientedPoint> points =
+  std::vector<OrientedPoint> points =
       Thin(std::move(gathered), options.max_points, area, &thinning_cell);
   if (points.size() < kMinPoints) {
     return InvalidArgumentError("surface fusion: the views hold " +
@@ -210,6 +267,7 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   // vertices and zero-area triangles).
   const Eigen::Vector3f offset = Eigen::Vector3f(0.31f, 0.47f, 0.13f) * settings.voxel_size;
   DistanceVolume volume(box.center() + offset, settings);
+  KeepOneSideOfTwoSidedSheets(&points, settings.voxel_size);
   volume.Integrate(points);
   if (!ReportProgress(progress, "fusion: contour", 2, kStages)) {
     return CancelledError("surface fusion cancelled");

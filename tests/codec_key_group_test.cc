@@ -11,6 +11,7 @@
 #include "codec/enc/data_fit.h"
 #include "codec/enc/encoder.h"
 #include "tests/analytic_mvid.h"
+#include "tools/eval/surface_distance.h"
 
 namespace meshvid {
 namespace {
@@ -81,7 +82,7 @@ EncoderOptions TestOptions() {
 }
 
 /// Root mean square distance from the decoded vertices of every frame to that frame's data
-/// (nearest data vertex; the data is much finer than the decoded mesh).
+/// surface.
 std::vector<double> DecodedErrors(const std::vector<std::uint8_t>& bytes,
                                   const std::vector<TriangleMesh>& frames) {
   auto decoder = MvidDecoder::OpenMemory(bytes);
@@ -92,13 +93,13 @@ std::vector<double> DecodedErrors(const std::vector<std::uint8_t>& bytes,
     auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
     EXPECT_TRUE(mesh.ok()) << mesh.status().ToString();
     if (!mesh.ok()) return errors;
+    auto data = SurfaceDistance::Build(frames[f]);
+    EXPECT_TRUE(data.ok()) << data.status().ToString();
+    if (!data.ok()) return errors;
     double sum = 0;
     for (const Eigen::Vector3f& p : mesh->positions) {
-      float nearest = std::numeric_limits<float>::infinity();
-      for (const Eigen::Vector3f& q : frames[f].positions) {
-        nearest = std::min(nearest, (p - q).squaredNorm());
-      }
-      sum += nearest;
+      const double distance = (*data)->Distance(p);
+      sum += distance * distance;
     }
     errors.push_back(std::sqrt(sum / double(mesh->positions.size())));
   }

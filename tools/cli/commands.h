@@ -16,6 +16,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddFuseCommand(CLI::App& app, int* exit_code);
 void AddExportCommand(CLI::App& app, int* exit_code);
+void AddRenderCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

@@ -108,8 +108,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
                   "Ground truth: colour every other panel by each vertex's distance to it,\n"
                   "with a colour bar in millimetres (scene units taken as metres)");
   cmd->add_option("--error-max", args->error_max_mm,
-                  "Top of the error colour scale in mm (default: a round number above the\n"
-                  "first frame's 95th percentile)")
+                  "Top of the error colour scale in mm (default: a round number above 4 times\n"
+                  "the first frame's median distance, in the worst panel)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--crf", args->crf, "MP4 quality, x264/x265 CRF 0..51 (default 20)")
       ->check(CLI::Range(0, 51));

@@ -42,10 +42,10 @@ StatusOr<Eigen::AlignedBox3f> SubjectBounds(MeshSequence& source, int first, int
   return bounds;
 }
 
-/// The value below which 95% of `distances` lie.
-float Percentile95(std::vector<float> distances) {
+/// The median of `distances`.
+float Median(std::vector<float> distances) {
   if (distances.empty()) return 0;
-  const std::size_t k = distances.size() * 95 / 100;
+  const std::size_t k = distances.size() / 2;
   std::nth_element(distances.begin(), distances.begin() + k, distances.end());
   return distances[k];
 }
@@ -130,25 +130,42 @@ StatusOr<RenderJobStats> RunRenderJob(const RenderJobOptions& options,
       MESHVID_ASSIGN_OR_RETURN(const TriangleMesh truth, reference->Frame(frame));
       MESHVID_ASSIGN_OR_RETURN(distance, SurfaceDistance::Build(truth));
     }
-    std::vector<RgbImage> pictures;
-    for (Panel& panel : panels) {
-      MESHVID_ASSIGN_OR_RETURN(const TriangleMesh mesh, panel.source->Frame(frame));
-      std::vector<Eigen::Vector3f> colours;
-      if (panel.coloured) {
-        const std::vector<float> distances = VertexDistances(mesh, *distance);
-        if (!(error_max > 0)) error_max = RoundUpNicely(1000.0f * Percentile95(distances)) / 1000.0f;
-        colours = ErrorColours(distances, error_max);
+    std::vector<TriangleMesh> meshes;
+    std::vector<std::vector<float>> distances(panels.size());
+    float worst_median = 0;
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+      MESHVID_ASSIGN_OR_RETURN(TriangleMesh mesh, panels[i].source->Frame(frame));
+      if (panels[i].coloured) {
+        distances[i] = VertexDistances(mesh, *distance);
+        if (!(error_max > 0)) worst_median = std::max(worst_median, Median(distances[i]));
       }
-      MESHVID_RETURN_IF_ERROR(panel.renderer.SetMesh(mesh, std::move(colours)));
+      meshes.push_back(std::move(mesh));
+    }
+    // The scale is fixed by the first frame, then kept: 4 times the worst panel's median
+    // distance shows the typical error in mid colours and saturates only outliers.
+    if (reference && !(error_max > 0)) {
+      error_max = RoundUpNicely(4000.0f * worst_median) / 1000.0f;
+    }
+    std::size_t last_coloured = panels.size();
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+      if (panels[i].coloured) last_coloured = i;
+    }
+    std::vector<RgbImage> pictures;
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+      Panel& panel = panels[i];
+      std::vector<Eigen::Vector3f> colours;
+      if (panel.coloured) colours = ErrorColours(distances[i], error_max);
+      MESHVID_RETURN_IF_ERROR(panel.renderer.SetMesh(meshes[i], std::move(colours)));
       RgbImage picture = panel.renderer.Render(camera);
       if (options.labels) {
         DrawText(&picture, 8 * scale, 8 * scale, panel.label, {240, 240, 240}, scale);
-        if (&panel == &panels.front()) {
+        if (i == 0) {
           DrawText(&picture, 8 * scale, options.height - 15 * scale,
                    "frame " + std::to_string(frame), {240, 240, 240}, scale);
         }
       }
-      if (panel.coloured) DrawColourBar(&picture, 1000.0f * error_max);
+      // One colour bar explains every coloured panel: at the right of the last one.
+      if (i == last_coloured) DrawColourBar(&picture, 1000.0f * error_max);
       pictures.push_back(std::move(picture));
     }
     RgbImage picture = pictures.size() == 1 ? std::move(pictures[0]) : SideBySide(pictures);

@@ -9,6 +9,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/terminal.h"
+#include "tools/export/gltf_export.h"
 #include "tools/export/mesh_cache_export.h"
 #include "tools/io/file_pattern.h"
 
@@ -68,9 +69,15 @@ int RunExport(const ExportArguments& args) {
     }
     return 0;
   }
+  StatusOr<GltfExportStats> stats = ExportGltf(**decoder, args.output, options, bar.Callback());
   bar.Finish();
-  std::fprintf(stderr, "meshvid: glTF export is not built yet\n");
-  return 2;
+  if (!stats.ok()) return ReportError(stats.status().WithContext(args.file));
+  if (!args.quiet) {
+    std::fprintf(stderr, "%s: %u key groups, %u joints, %u frames at %.3g fps (%zu bytes)\n",
+                 args.output.c_str(), stats->key_groups, stats->joints, stats->frames,
+                 (*decoder)->info().frame_rate, stats->bytes);
+  }
+  return 0;
 }
 
 }  // namespace

@@ -162,6 +162,7 @@ TEST(RenderJobTest, PanelsSideBySideAndBadRanges) {
   EXPECT_EQ(PanelLabel("cap/manifest.json", -1), "input views");
   EXPECT_EQ(PanelLabel("out/samba.mvid", 2), "samba.mvid L2");
   EXPECT_EQ(PanelLabel("gt/samba.obj", -1), "ground truth samba");
+  EXPECT_EQ(PanelLabel("cap/ground_truth.obj", -1), "ground truth");
 }
 
 }  // namespace

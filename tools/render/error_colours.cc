@@ -67,8 +67,8 @@ void DrawColourBar(RgbImage* image, float max_mm) {
   }
   for (int k = 0; k < 3; ++k) {
     const int y = top + (bottom - 1 - top) * k / 2;
-    FillRect(image, x + bar_width, y, 3 * scale, 1, white);
-    DrawText(image, x + bar_width + 5 * scale, y - 3 * scale, labels[k], white, scale);
+    FillRect(image, x + bar_width, y, 2 * scale, 1, white);
+    DrawText(image, x + bar_width + 5 * scale + 1, y - 3 * scale, labels[k], white, scale);
   }
 }
 

@@ -73,7 +73,8 @@ std::string PanelLabel(const std::string& spec, int level) {
   if (EndsWith(spec, ".mvid")) {
     return name + (level >= 0 ? " L" + std::to_string(level) : "");
   }
-  return "ground truth " + std::filesystem::path(spec).stem().string();
+  const std::string stem = std::filesystem::path(spec).stem().string();
+  return stem == "ground_truth" ? "ground truth" : "ground truth " + stem;
 }
 
 StatusOr<RenderJobStats> RunRenderJob(const RenderJobOptions& options,

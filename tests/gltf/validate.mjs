@@ -9,7 +9,7 @@ import path from 'node:path';
 const [validatorDir, ...files] = process.argv.slice(2);
 let validator;
 try {
-  validator = createRequire(path.join(validatorDir, 'package.json'))('gltf-validator');
+  validator = createRequire(path.join(path.resolve(validatorDir), 'package.json'))('gltf-validator');
 } catch (e) {
   console.log(`gltf-validator is not installed in ${validatorDir} (run scripts/setup): skipped`);
   process.exit(77);

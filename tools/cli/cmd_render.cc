@@ -81,8 +81,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "render",
       "Render surfaces to a picture or a video: Embree ray casting, shaded, seen from a camera\n"
-      "that frames the subject (y up). INPUT and every --compare input is a panel, left to\n"
-      "right, all seen from the same camera:\n"
+      "that frames INPUT over the frames rendered (y up). INPUT and every --compare input is\n"
+      "a panel, left to right, all seen from the same camera:\n"
       "  a .mvid (decoded at --level), a capture (manifest.json, a {view} pattern, a .conf:\n"
       "  the raw views of each frame together), or ground truth (NAME.obj + NAME.pc2, a\n"
       "  folder of meshes, a {frame} pattern, scene:arm-block, scene:cloth).\n"
@@ -93,7 +93,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("INPUT", args->input, "What to render (first panel)")->required();
   cmd->add_option("-o,--out", args->output, "OUT.png, OUT{frame:04}.png or OUT.mp4")->required();
   cmd->add_option("--compare", args->compare,
-                  "Another input shown beside INPUT (repeat for more panels)");
+                  "Another input shown beside INPUT (repeat for more panels)")
+      ->allow_extra_args(false);
   cmd->add_option("--frames", args->frames,
                   "Frame range A:B (half-open), A:, :B or N (default: all; a single PNG shows\n"
                   "the first)");

@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "codec/dec/mvid_decoder.h"
@@ -165,7 +166,7 @@ class ArrayFrameSource : public FrameSource {
 py::bytes Encode(const py::sequence& frames, const std::string& path, int quality,
                  const std::string& codec, int levels, double key_group_threshold,
                  int max_key_groups, double frame_rate, int gof_size, std::size_t base_vertices,
-                 int effort) {
+                 int effort, const py::object& progress) {
   std::vector<std::vector<TriangleMesh>> meshes;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const py::sequence views = py::reinterpret_borrow<py::sequence>(frames[f]);
@@ -199,11 +200,31 @@ py::bytes Encode(const py::sequence& frames, const std::string& path, int qualit
   options.metadata_json = R"({"encoder":"meshvid python"})";
   ArrayFrameSource source(std::move(meshes), frame_rate);
   std::ostringstream out;
+  // Runs without the GIL; takes it to call `progress` and to see Ctrl-C, either of which
+  // stops the encoder (a raised exception is re-raised after it has stopped).
+  bool interrupted = false;
+  const ProgressCallback callback = [&](std::string_view stage, long done, long total) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) {
+      interrupted = true;
+      return false;
+    }
+    if (progress.is_none()) return true;
+    try {
+      const py::object answer = progress(std::string(stage), done, total);
+      return answer.is_none() || answer.cast<bool>();
+    } catch (py::error_already_set& e) {
+      e.restore();
+      interrupted = true;
+      return false;
+    }
+  };
   StatusOr<EncodeSummary> summary = InvalidArgumentError("");
   {
     py::gil_scoped_release release;
-    summary = EncodeCapture(source, OstreamSink(out), options);
+    summary = EncodeCapture(source, OstreamSink(out), options, callback);
   }
+  if (interrupted && PyErr_Occurred() != nullptr) throw py::error_already_set();
   if (!summary.ok()) Raise(summary.status());
   const std::string bytes = out.str();
   if (!path.empty()) {
@@ -264,8 +285,10 @@ PYBIND11_MODULE(meshvid, m) {
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
         py::arg("codec") = "hevc", py::arg("levels") = 2, py::arg("key_group_threshold") = 0.02,
         py::arg("max_key_groups") = 0, py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32,
-        py::arg("base_vertices") = 2000, py::arg("effort") = 4,
+        py::arg("base_vertices") = 2000, py::arg("effort") = 4, py::arg("progress") = py::none(),
         "Encodes a capture: `frames` is a list of frames, each a list of views "
         "(vertices (V, 3), triangles (F, 3)) in world coordinates. Returns the .mvid bytes "
-        "(also written to `path` if given). Options as `meshvid encode`'s.");
+        "(also written to `path` if given). Options as `meshvid encode`'s. `progress`, if "
+        "given, is called as progress(stage, done, total); returning False cancels "
+        "(meshvid.Error). Ctrl-C interrupts.");
 }

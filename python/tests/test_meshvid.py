@@ -99,7 +99,10 @@ def test_encode_from_arrays_round_trips(tmp_path):
         # Two views, each the half of the surface facing it.
         frames.append([(moved, triangles[centres > -0.02]), (moved, triangles[centres < 0.02])])
     path = tmp_path / "blob.mvid"
-    data = meshvid.encode(frames, path=str(path), quality=60, levels=1)
+    stages = set()
+    data = meshvid.encode(frames, path=str(path), quality=60, levels=1,
+                          progress=lambda stage, done, total: stages.add(stage))
+    assert "detail" in stages
     assert path.read_bytes() == data
     f = meshvid.open(data)
     assert len(f) == 4 and f.info["levels"] == 1
@@ -109,3 +112,16 @@ def test_encode_from_arrays_round_trips(tmp_path):
         radii = np.linalg.norm(decoded - np.array([0.03 * t, 0, 0]), axis=1)
         # The decoded surface lies on the captured one: the unit sphere away from the bump.
         assert abs(np.median(radii) - 1.0) < 0.02
+
+
+def test_encode_can_be_cancelled_and_callback_errors_propagate():
+    vertices, triangles = sphere(1.0)
+    frames = [[(vertices, triangles)]] * 2
+    with pytest.raises(meshvid.Error, match="cancel"):
+        meshvid.encode(frames, progress=lambda stage, done, total: False)
+
+    def failing(stage, done, total):
+        raise ValueError("stop here")
+
+    with pytest.raises(ValueError, match="stop here"):
+        meshvid.encode(frames, progress=failing)

@@ -23,6 +23,7 @@ ReportOptions FakeOptions() {
   options.date = "2026-11-22T11:00:00Z";
   options.command_line = "meshvid bench --quick -o bench/results";
   options.plots["fake-3-arc"] = "results/fake-3-arc-rd.png";
+  options.stills["fake-3-arc"] = "results/fake-3-arc-still.png";
   return options;
 }
 
@@ -42,6 +43,9 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
       Contains(md, "| fake | 3-arc | -50.0% (HEVC L1) not met | 20.0x met | 95.0% vs 90.0% met |"))
       << md;
   EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | |"));
+  // The still of the default point's worst frame, beside the RD plot.
+  EXPECT_TRUE(Contains(md, "![worst frame, fake-3-arc](results/fake-3-arc-still.png)")) << md;
+  EXPECT_EQ(BenchStillName(records[0]), "fake-3-arc-still.png");
   EXPECT_TRUE(Contains(md, "(peak memory floor: the bench process's own 21 MB)"));
   EXPECT_TRUE(Contains(md, "**Simulation failed**, nothing else ran: exit code 1: no such file"));
   // The BD-rate table: a value with its interval, and the reason where there is none.
@@ -155,6 +159,7 @@ TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
 TEST(BenchReportTest, MissingPlotsAreExplained) {
   ReportOptions options = FakeOptions();
   options.plots.clear();
+  options.stills.clear();
   options.plot_note = "gnuplot is not installed";
   const std::string md = GenerateResultsMarkdown({testing::FakeRecord()}, options);
   EXPECT_TRUE(Contains(md, "(No plot: gnuplot is not installed)"));

@@ -102,6 +102,8 @@ struct FakeBench {
     options.eval_samples = 1000;
     options.results_dir = dir.File("results");
     options.work_dir = dir.File("work");
+    // The call counts below leave out the still (its own test turns it on).
+    options.draw_stills = false;
     events.log = [this](const std::string& line) { log.push_back(line); };
   }
   std::vector<std::string> Calls() const {
@@ -226,6 +228,25 @@ TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {
     logged |= line.find("8 points were recorded without the mean of per-frame PSNRs") !=
               std::string::npos;
   EXPECT_TRUE(logged);
+}
+
+TEST(BenchRunnerTest, DrawsTheDefaultPointsWorstFrame) {
+  FakeBench bench;
+  bench.options.draw_stills = true;
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  const std::vector<std::string> calls = bench.Calls();
+  const std::string& last = calls.back();
+  EXPECT_EQ(last.rfind("render ", 0), 0u) << last;
+  // The capture, the default encode (hevc quality 40) at its level and the ground truth, the
+  // worst frame only, coloured by distance to the ground truth.
+  EXPECT_NE(last.find("capture/manifest.json --compare "), std::string::npos) << last;
+  EXPECT_NE(last.find("hevc-q40.mvid --compare "), std::string::npos) << last;
+  const int worst = (*records)[0].divergence.worst_frame;
+  EXPECT_NE(last.find("--frames " + std::to_string(std::max(worst, 0)) + ":"), std::string::npos)
+      << last;
+  EXPECT_NE(last.find("--error-against "), std::string::npos) << last;
+  EXPECT_NE(last.find("fake-3-arc-still.png"), std::string::npos) << last;
 }
 
 TEST(BenchRunnerTest, PointsWithoutPerFrameFiguresAreFilledFromTheirEvalJsonOrMeasuredAgain) {

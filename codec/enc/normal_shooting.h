@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "codec/common/embree_scene.h"
 #include "codec/common/mesh.h"
 #include "format/status.h"
 
@@ -62,8 +63,7 @@ class ShootingTarget {
 
  private:
   ShootingTarget() = default;
-  struct Embree;
-  std::unique_ptr<Embree> embree_;
+  std::unique_ptr<EmbreeScene> scene_;
   std::size_t triangle_count_ = 0;
 };
 

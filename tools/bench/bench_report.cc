@@ -183,6 +183,16 @@ std::string RecordSection(const BenchRecord& record, const ReportOptions& option
   } else if (!options.plot_note.empty()) {
     md += "(No plot: " + options.plot_note + ")\n\n";
   }
+  const auto still = options.stills.find(name);
+  if (still != options.stills.end()) {
+    const DivergenceCheck& d = record.divergence;
+    md += "The default point's worst frame (" +
+          (d.has_frames && d.worst_frame >= 0 ? "frame " + std::to_string(d.worst_frame)
+                                              : std::string("frame 0: no per-frame figures")) +
+          "): input views | decoded | ground truth, coloured by distance to the ground truth "
+          "(`meshvid render`; the baseline's decoded frames are not kept, so it is not shown):"
+          "\n\n![worst frame, " + name + "](" + still->second + ")\n\n";
+  }
   if (!record.bd_rates.empty()) {
     md +=
         "BD-rate against the baseline (bytes per frame at equal D1 PSNR, the D1 PSNR named in "
@@ -287,6 +297,10 @@ MachineInfo ReadMachineInfo() {
   if (uname(&name) == 0)
     info.kernel = std::string(name.sysname) + " " + name.release + " " + name.machine;
   return info;
+}
+
+std::string BenchStillName(const BenchRecord& record) {
+  return BenchRecordName(record) + "-still.png";
 }
 
 std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,

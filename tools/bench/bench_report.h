@@ -25,7 +25,13 @@ struct ReportOptions {
   std::map<std::string, std::string> plots;
   /// Said where a plot would be when plots were skipped (e.g. gnuplot is missing).
   std::string plot_note;
+  /// Record name -> its still (BenchStillName), relative to the report's folder, if drawn.
+  std::map<std::string, std::string> stills;
 };
+
+/// The file name of a record's still: the default point's worst frame drawn by `meshvid
+/// render` (input views | decoded | ground truth, coloured by distance to the ground truth).
+std::string BenchStillName(const BenchRecord& record);
 
 /// The whole RESULTS.md text for `records` (in the order given): the goal check, the
 /// "Divergence" table (each record's check computed from its points, bench_divergence.h), then

@@ -127,6 +127,10 @@ class Runner {
     return WriteBenchRecord(record, record_path_);
   }
 
+  /// Draws the default point's worst frame (BenchStillName) with `meshvid render`; a failure
+  /// is logged, not fatal.
+  void Still(const BenchRecord& record);
+
   StatusOr<ChildRun> Child(const std::vector<std::string>& args, const std::string& log_name) {
     std::vector<std::string> argv = {options_.meshvid};
     argv.insert(argv.end(), args.begin(), args.end());
@@ -223,7 +227,29 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   }
   MESHVID_RETURN_IF_ERROR(Save(record));
   Log(label_ + " " + DescribeDivergence(record.divergence));
+  if (options_.draw_stills) Still(record);
   return Status::Ok();
+}
+
+void Runner::Still(const BenchRecord& record) {
+  const BenchPoint* point = FindDefaultPoint(record);
+  if (point == nullptr || !point->ok) return;
+  const std::string mvid =
+      dir_ + "/" + point->codec + "-q" + std::to_string(point->quality) + ".mvid";
+  if (!fs::exists(mvid)) return;
+  const DivergenceCheck& d = record.divergence;
+  const int frame = d.has_frames && d.worst_frame >= 0 ? d.worst_frame : 0;
+  const std::vector<std::string> args = {
+      "render", dir_ + "/capture/manifest.json", "--compare", mvid, "--compare",
+      record.reference, "--error-against", record.reference, "--level",
+      std::to_string(point->level), "--frames", std::to_string(frame) + ":" +
+      std::to_string(frame + 1), "--size", "400x300", "-q", "-o",
+      options_.results_dir + "/" + BenchStillName(record)};
+  const StatusOr<ChildRun> run = Child(args, "still");
+  if (!run.ok() || !run->ok()) {
+    Log(label_ + ": the still was not drawn (" +
+        (run.ok() ? "see " + run->log_path : run.status().message()) + ")");
+  }
 }
 
 Status Runner::Simulate(const BenchSequence& sequence, const BenchRig& rig, BenchRecord& record) {

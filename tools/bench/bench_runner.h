@@ -53,6 +53,8 @@ struct BenchOptions {
   std::string work_dir = "bench/results/tmp";        ///< captures, .mvid files, logs
   bool resume = true;                                ///< reuse finished steps of existing records
   bool keep_work = false;  ///< keep the baseline's decoded frames after evaluation
+  /// Draw each record's still (BenchStillName) with `meshvid render` after its points.
+  bool draw_stills = true;
 };
 
 /// How a run reports to its caller (the CLI draws and prints these).

@@ -47,6 +47,7 @@ struct BenchArguments {
   bool keep_work = false;
   bool report_only = false;
   bool no_plots = false;
+  bool no_stills = false;
   bool quiet = false;
 };
 
@@ -104,6 +105,7 @@ Status BuildOptions(const BenchArguments& a, BenchOptions* o) {
   o->work_dir = a.work.empty() ? a.out + "/tmp" : a.work;
   o->resume = !a.fresh;
   o->keep_work = a.keep_work;
+  o->draw_stills = !a.no_stills;
   std::error_code error;
   o->meshvid = fs::read_symlink("/proc/self/exe", error).string();
   if (error) return InternalError("cannot find this program's path: " + error.message());
@@ -153,6 +155,13 @@ int WriteReport(const BenchArguments& args, const BenchOptions& options) {
     } else {
       std::fprintf(stderr, "meshvid: plots skipped: %s\n", plots.status().message().c_str());
       report_options.plot_note = plots.status().message();
+    }
+  }
+  for (const BenchRecord& record : *records) {
+    const fs::path still = fs::path(options.results_dir) / BenchStillName(record);
+    if (fs::exists(still)) {
+      report_options.stills[BenchRecordName(record)] =
+          fs::relative(fs::absolute(still), report_dir).string();
     }
   }
   const Status written = WriteFileAtomically(report, GenerateResultsMarkdown(*records, report_options));
@@ -318,6 +327,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
                 "Only redraw the plots and RESULTS.md from the records in OUT (per-frame\n"
                 "figures older records lack are read from the eval JSON in the work folder)");
   cmd->add_flag("--no-plots", args->no_plots, "Do not run gnuplot");
+  cmd->add_flag("--no-stills", args->no_stills,
+                "Do not draw each record's worst frame with meshvid render");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no step lines");
   cmd->callback([args, exit_code, cmd] {
     args->frames_given = cmd->count("--frames") > 0;

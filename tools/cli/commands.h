@@ -15,6 +15,8 @@ void AddDecodeCommand(CLI::App& app, int* exit_code);
 void AddEncodeCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddFuseCommand(CLI::App& app, int* exit_code);
+void AddExportCommand(CLI::App& app, int* exit_code);
+void AddRenderCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

@@ -28,6 +28,8 @@ int Run(int argc, char** argv) {
   meshvid::cli::AddBenchCommand(app, &exit_code);
   meshvid::cli::AddDecodeCommand(app, &exit_code);
   meshvid::cli::AddFuseCommand(app, &exit_code);
+  meshvid::cli::AddExportCommand(app, &exit_code);
+  meshvid::cli::AddRenderCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

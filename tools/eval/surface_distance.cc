@@ -1,7 +1,5 @@
 #include "tools/eval/surface_distance.h"
 
-#include <embree3/rtcore.h>
-
 #include <cmath>
 #include <string>
 
@@ -34,13 +32,7 @@ Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Ve
 
 namespace {
 
-/// Handle on the process-wide Embree device, created on first use.
-RTCDevice SharedDevice() {
-  static RTCDevice device = rtcNewDevice("verbose=0");
-  return device;
-}
-
-/// The state one point query carries through Embree's callbacks.
+/// The state one point query carries through the scene's triangle visits.
 struct QueryState {
   const std::vector<Eigen::Vector3d>* positions;
   const std::vector<Triangle>* triangles;
@@ -48,9 +40,9 @@ struct QueryState {
   double best_squared;
 };
 
-bool ClosestPointCallback(RTCPointQueryFunctionArguments* args) {
-  auto* state = static_cast<QueryState*>(args->userPtr);
-  const Triangle& tri = (*state->triangles)[args->primID];
+bool VisitTriangle(void* user, std::uint32_t triangle, float* radius) {
+  auto* state = static_cast<QueryState*>(user);
+  const Triangle& tri = (*state->triangles)[triangle];
   const auto& pos = *state->positions;
   // The distance to the triangle's plane is a lower bound: skip triangles it rules out.
   const Eigen::Vector3d normal = (pos[tri[1]] - pos[tri[0]]).cross(pos[tri[2]] - pos[tri[0]]);
@@ -65,7 +57,7 @@ bool ClosestPointCallback(RTCPointQueryFunctionArguments* args) {
   if (squared < state->best_squared) {
     state->best_squared = squared;
     // Shrink the search sphere, rounding up so float rounding cannot cut a tie away.
-    args->query->radius = std::nextafter(static_cast<float>(std::sqrt(squared)), INFINITY);
+    *radius = std::nextafter(static_cast<float>(std::sqrt(squared)), INFINITY);
     return true;
   }
   return false;
@@ -73,55 +65,15 @@ bool ClosestPointCallback(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
-struct SurfaceDistance::Embree {
-  RTCScene scene = nullptr;
-  ~Embree() {
-    if (scene != nullptr) rtcReleaseScene(scene);
-  }
-};
-
 StatusOr<std::unique_ptr<SurfaceDistance>> SurfaceDistance::Build(const TriangleMesh& mesh) {
   if (mesh.triangles.empty()) {
     return InvalidArgumentError("cannot measure distances to a mesh with no triangles");
   }
-  RTCDevice device = SharedDevice();
-  if (device == nullptr) {
-    return InternalError("Embree could not start (rtcNewDevice failed)");
-  }
   std::unique_ptr<SurfaceDistance> result(new SurfaceDistance());
+  MESHVID_ASSIGN_OR_RETURN(result->scene_, EmbreeScene::Create(mesh));
   result->positions_.reserve(mesh.positions.size());
   for (const Eigen::Vector3f& p : mesh.positions) result->positions_.push_back(p.cast<double>());
   result->triangles_ = mesh.triangles;
-  result->embree_ = std::make_unique<Embree>();
-
-  RTCScene scene = rtcNewScene(device);
-  result->embree_->scene = scene;
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      mesh.positions.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      mesh.triangles.size()));
-  if (vertices == nullptr || indices == nullptr) {
-    rtcReleaseGeometry(geometry);
-    return InternalError("Embree could not allocate buffers for " +
-                         std::to_string(mesh.triangles.size()) + " triangles");
-  }
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = mesh.positions[i][k];
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) indices[3 * t + k] = mesh.triangles[t][k];
-  }
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene, geometry);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene);
-  if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
-    return InternalError("Embree failed to build the distance structure over " +
-                         std::to_string(mesh.triangles.size()) + " triangles");
-  }
   return result;
 }
 
@@ -148,15 +100,7 @@ double SurfaceDistance::DistanceFrom(const Eigen::Vector3f& point,
 double SurfaceDistance::Search(const Eigen::Vector3f& point, double radius,
                                double best_squared) const {
   QueryState state{&positions_, &triangles_, point.cast<double>(), best_squared};
-  RTCPointQuery query;
-  query.x = point.x();
-  query.y = point.y();
-  query.z = point.z();
-  query.time = 0.0f;
-  query.radius = static_cast<float>(radius);
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  rtcPointQuery(embree_->scene, &query, &context, ClosestPointCallback, &state);
+  scene_->VisitTrianglesNear(point, static_cast<float>(radius), VisitTriangle, &state);
   return std::sqrt(state.best_squared);
 }
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "codec/common/embree_scene.h"
 #include "codec/common/mesh.h"
 #include "format/status.h"
 
@@ -41,8 +42,7 @@ class SurfaceDistance {
   SurfaceDistance() = default;
   /// The search, pruned to `radius` with `best_squared` already found; +inf if none within.
   double Search(const Eigen::Vector3f& point, double radius, double best_squared) const;
-  struct Embree;
-  std::unique_ptr<Embree> embree_;
+  std::unique_ptr<EmbreeScene> scene_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<Triangle> triangles_;
 };

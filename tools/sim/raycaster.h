@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "codec/common/camera.h"
+#include "codec/common/embree_scene.h"
 #include "codec/common/mesh.h"
 #include "format/status.h"
 
@@ -26,7 +27,7 @@ struct RayCastImage {
 /// once; SetMesh() may not run concurrently with anything else.
 class RayCaster {
  public:
-  /// Creates the Embree device; fails with Embree's message if it cannot.
+  /// An empty caster; SetMesh() builds its scene.
   static StatusOr<std::unique_ptr<RayCaster>> Create();
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
@@ -42,8 +43,7 @@ class RayCaster {
 
  private:
   RayCaster() = default;
-  struct EmbreeState;
-  std::unique_ptr<EmbreeState> state_;
+  std::unique_ptr<EmbreeScene> scene_;  ///< null until SetMesh()
 };
 
 }  // namespace meshvid

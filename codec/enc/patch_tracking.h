@@ -1,4 +1,4 @@
-// Motion for the vertices the segmentation left unregistered (beyond method.md 5.4): they
+// Motion for the vertices the segmentation left unregistered (docs/encoder-method.md section 3.1): they
 // are split into small patches, each a further segment with its own rigid track, and the
 // patches of a frame are solved jointly: each on its own correspondences, all held together
 // where they meet each other or a segment (as an embedded deformation graph is). A patch

@@ -1,4 +1,4 @@
-// The pieces of a Gauss-Newton step of rigid transforms (method.md eq. 5) shared by the
+// The pieces of a Gauss-Newton step of rigid transforms (docs/encoder-method.md eq. 5) shared by the
 // segmentation and the patch tracking: one correspondence's terms, the damping, and the
 // update of a transform by a solved increment. An increment x = (w, d) about a centre c
 // moves a posed point p to p + w x (p - c) + d.

@@ -7,8 +7,8 @@ find_package(PkgConfig REQUIRED)
 
 # format/ needs nothing. meshvid_common and meshvid_decoder (codec/common, codec/dec):
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)          # libeigen3-dev
-pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)                 # libzstd-dev
-pkg_check_modules(FFMPEG REQUIRED IMPORTED_TARGET libavcodec libavutil)  # libavcodec-dev libavutil-dev
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)                # libzstd-dev
+pkg_check_modules(FFMPEG REQUIRED IMPORTED_TARGET libavcodec libavutil) # libavcodec/libavutil-dev
 find_package(draco REQUIRED)                         # libdraco-dev: draco::draco
 
 # meshvid_encoder (codec/enc):

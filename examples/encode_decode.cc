@@ -54,7 +54,9 @@ double RmsDistance(const meshvid::TriangleMesh& decoded, const meshvid::Triangle
   double sum = 0;
   for (const Eigen::Vector3f& p : decoded.positions) {
     float nearest = std::numeric_limits<float>::infinity();
-    for (const Eigen::Vector3f& q : input.positions) nearest = std::min(nearest, (p - q).squaredNorm());
+    for (const Eigen::Vector3f& q : input.positions) {
+      nearest = std::min(nearest, (p - q).squaredNorm());
+    }
     sum += nearest;
   }
   return std::sqrt(sum / std::max<std::size_t>(1, decoded.positions.size()));

@@ -1,5 +1,5 @@
-// Surface detail (docs/encoder-method.md section 4): per frame, the posed and subdivided base mesh shoots
-// its interpolated normals into every view's full-resolution mesh; the hits of all views are
+// Surface detail (docs/encoder-method.md section 4): per frame, the posed and subdivided base mesh
+// shoots its interpolated normals into every view's full-resolution mesh; the hits of all views are
 // fused into one displacement per sample, and hole filling makes every frame complete.
 #ifndef MESHVID_CODEC_ENC_DETAIL_H_
 #define MESHVID_CODEC_ENC_DETAIL_H_

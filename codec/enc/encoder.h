@@ -1,5 +1,6 @@
-// The meshvid encoder: a multi-view capture in, a .mvid out, by the method of docs/encoder-method.md
-// (base mesh, multi-frame piecewise-rigid segmentation, fused displacement video).
+// The meshvid encoder: a multi-view capture in, a .mvid out, by the method of
+// docs/encoder-method.md (base mesh, multi-frame piecewise-rigid segmentation, fused displacement
+// video).
 #ifndef MESHVID_CODEC_ENC_ENCODER_H_
 #define MESHVID_CODEC_ENC_ENCODER_H_
 

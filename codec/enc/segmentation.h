@@ -1,5 +1,5 @@
-// The multi-frame piecewise-rigid segmentation of docs/encoder-method.md section 3: base vertices are
-// grouped into segments, each following one rigid transform per frame, found jointly over the
+// The multi-frame piecewise-rigid segmentation of docs/encoder-method.md section 3: base vertices
+// are grouped into segments, each following one rigid transform per frame, found jointly over the
 // frames (eq. 5) on the vertices whose correspondences agree within a tolerance (eq. 6).
 #ifndef MESHVID_CODEC_ENC_SEGMENTATION_H_
 #define MESHVID_CODEC_ENC_SEGMENTATION_H_

@@ -17,9 +17,9 @@ namespace meshvid {
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
-  virtual int frame_count() const = 0;
-  virtual int view_count() const = 0;
-  virtual double frame_rate() const = 0;
+  virtual int frame_count() const = 0;     ///< frames M
+  virtual int view_count() const = 0;      ///< views K, the same in every frame
+  virtual double frame_rate() const = 0;   ///< frames per second, stored in the file
   /// All views of frame `frame` (0-based), in view order. May be called from one thread only.
   virtual StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const = 0;
 };

@@ -22,12 +22,15 @@ class CaptureFrameSource : public FrameSource {
   /// Opens a capture as CaptureSequence::Open does (a manifest.json, a file pattern with
   /// {frame} and {view}, or a Stanford .conf).
   static StatusOr<std::unique_ptr<CaptureFrameSource>> Open(const std::string& spec);
+  /// Serves the frames of an opened capture.
   explicit CaptureFrameSource(std::unique_ptr<CaptureSequence> capture);
 
+  /// The capture read (its views' calibration, units, file names).
   const CaptureSequence& capture() const { return *capture_; }
   int frame_count() const override { return capture_->frame_count(); }
   int view_count() const override { return capture_->view_count(); }
   double frame_rate() const override { return capture_->info().frame_rate; }
+  /// The views of `frame`, parsed from their files unless among the last kCachedFrames.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override;
 
  private:

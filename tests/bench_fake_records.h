@@ -13,6 +13,7 @@
 
 #include "tools/bench/bench_divergence.h"
 #include "tools/bench/bench_record.h"
+#include "tools/json/json_number.h"
 
 namespace meshvid::testing {
 
@@ -144,11 +145,7 @@ inline std::string RecordJsonWithoutFrameFigures() {
 /// The `meshvid eval --json` text (tools/eval/eval_report.cc) a point's figures come from:
 /// its means, and its per-frame accuracy RMS and D1 PSNR (other per-frame figures made up).
 inline std::string FakeEvalJson(const BenchPoint& p) {
-  auto number = [](double v) -> nlohmann::json {
-    if (std::isnan(v)) return nullptr;
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    return v;
-  };
+  const auto number = [](double v) { return JsonNumber(v); };  // as the eval writes them
   nlohmann::json j;
   j["settings"] = {{"ref", "gt.obj"}, {"test", "test"}, {"samples", 50000}};
   j["peak"] = 1.7;

@@ -35,6 +35,13 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
                             dir);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("--quality"), std::string::npos) << run.err;
+  // The library names EncoderOptions' fields (tolerance_shrink); the command, its flags.
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --tol-shrink 2 -q",
+                            dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--tol-shrink must be in (0, 1)"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("tolerance_shrink"), std::string::npos) << run.err;
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
                                 "' --codec mpeg2 -q",
                             dir);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -16,20 +17,17 @@
 namespace meshvid {
 namespace {
 
-/// Frames held in memory: one closed view per frame.
-class MemoryFrames : public FrameSource {
- public:
-  explicit MemoryFrames(std::vector<TriangleMesh> frames) : frames_(std::move(frames)) {}
-  int frame_count() const override { return static_cast<int>(frames_.size()); }
-  int view_count() const override { return 1; }
-  double frame_rate() const override { return 25; }
-  StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override {
-    return std::vector<TriangleMesh>{frames_[frame]};
+/// Frames held in memory (the library's MemoryFrameSource): one closed view per frame.
+MemoryFrameSource MemoryFrames(const std::vector<TriangleMesh>& frames) {
+  std::vector<std::vector<TriangleMesh>> views;
+  for (const TriangleMesh& frame : frames) views.push_back({frame});
+  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
+  if (!source.ok()) {
+    ADD_FAILURE() << source.status().ToString();
+    std::abort();
   }
-
- private:
-  std::vector<TriangleMesh> frames_;
-};
+  return std::move(*source);
+}
 
 /// A still ellipsoid and a block (a second ellipsoid) overlapping its end, one surface as the
 /// fusion sees it. The block drifts along x by `drift` a frame and, from frame `jump_frame`
@@ -60,7 +58,7 @@ struct Encoded {
 
 Encoded Encode(const std::vector<TriangleMesh>& frames, const EncoderOptions& options) {
   Encoded encoded;
-  MemoryFrames source(frames);
+  const MemoryFrameSource source = MemoryFrames(frames);
   StatusOr<EncodeSummary> summary = EncodeCapture(
       source,
       [&](std::span<const std::uint8_t> b) {
@@ -185,11 +183,11 @@ TEST(KeyGroups, OneKeyGroupAtMostKeepsOneBaseThroughTheJump) {
 TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {
   EncoderOptions options = TestOptions();
   options.key_group_threshold = 1.5;
-  MemoryFrames source(TwoBodyFrames(2, 0, 1000));
+  const MemoryFrameSource source = MemoryFrames(TwoBodyFrames(2, 0, 1000));
   auto summary = EncodeCapture(source, [](std::span<const std::uint8_t>) { return Status::Ok(); },
                                options);
   ASSERT_FALSE(summary.ok());
-  EXPECT_NE(summary.status().message().find("--key-group-threshold"), std::string::npos);
+  EXPECT_NE(summary.status().message().find("key_group_threshold"), std::string::npos);
 }
 
 }  // namespace

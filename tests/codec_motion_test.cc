@@ -78,6 +78,8 @@ TEST(MotionTest, ModelRoundTripsWithWeightsSummingToOne) {
   }
   EXPECT_EQ(DecodeMotionModel(*payload, 499).status().code(), StatusCode::kCorrupt);
   EXPECT_TRUE(decoded->model.surface_triangles.empty());
+  // Without a mask: motion_version 1, which has no mask_triangle_count (spec/mvid-codec.md 2.1).
+  EXPECT_EQ((*payload)[0], 1);
 }
 
 TEST(MotionTest, SurfaceMaskRoundTripsAndMustMatchTheBase) {
@@ -85,9 +87,19 @@ TEST(MotionTest, SurfaceMaskRoundTripsAndMustMatchTheBase) {
   model.surface_triangles = {1, 0, 0, 1, 1, 1, 0, 1, 0, 0, 1};  // 11 triangles: 2 bytes
   auto payload = EncodeMotionModel(model, MotionQuantization{});
   ASSERT_TRUE(payload.ok()) << payload.status().ToString();
+  EXPECT_EQ((*payload)[0], 2);  // motion_version 2: the one with a mask
   auto decoded = DecodeMotionModel(*payload, 10, 11);
   ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
   EXPECT_EQ(decoded->model.surface_triangles, model.surface_triangles);
+  // The same model without its mask is 4 bytes of header shorter (no mask_triangle_count).
+  MotionModel unmasked = model;
+  unmasked.surface_triangles.clear();
+  auto plain = EncodeMotionModel(unmasked, MotionQuantization{});
+  ASSERT_TRUE(plain.ok()) << plain.status().ToString();
+  EXPECT_EQ((*plain)[0], 1);
+  auto plain_decoded = DecodeMotionModel(*plain, 10, 11);
+  ASSERT_TRUE(plain_decoded.ok()) << plain_decoded.status().ToString();
+  EXPECT_TRUE(plain_decoded->model.surface_triangles.empty());
   // A mask for another base mesh is corrupt input.
   EXPECT_EQ(DecodeMotionModel(*payload, 10, 12).status().code(), StatusCode::kCorrupt);
 }

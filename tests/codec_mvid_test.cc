@@ -222,6 +222,14 @@ TEST(MvidRoundTripTest, WriterRejectsInconsistentInput) {
   EXPECT_FALSE(MvidWriter::Create([](std::span<const std::uint8_t>) { return Status::Ok(); },
                                   rep.base, wrong, settings)
                    .ok());
+  // A base mesh coder free to renumber vertices would break the blends' order: refused.
+  MvidWriterSettings reordering = settings;
+  reordering.base.allow_reorder = true;
+  auto refused = MvidWriter::Create([](std::span<const std::uint8_t>) { return Status::Ok(); },
+                                    rep.base, rep.motion, reordering);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(refused.status().message().find("allow_reorder"), std::string::npos);
 }
 
 /// Every readable frame of `bytes` at every level; returns the first error.

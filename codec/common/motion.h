@@ -1,7 +1,7 @@
 // The coarse motion of a meshvid sequence: a segmentation of the base mesh into rigid pieces,
 // per-vertex blend weights over the segments' transforms, and a rigid transform per segment
 // per frame. A vertex's posed position is the weighted blend of its segments' transforms
-// applied to its base position (method.md eq. 1, stated as linear blend skinning).
+// applied to its base position (docs/encoder-method.md eq. 1: linear blend skinning).
 #ifndef MESHVID_CODEC_COMMON_MOTION_H_
 #define MESHVID_CODEC_COMMON_MOTION_H_
 

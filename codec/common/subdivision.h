@@ -66,10 +66,10 @@ class RegularSubdivision {
   std::vector<std::uint32_t> lattice_;  ///< per triangle, (n+1)(n+2)/2 sample indices
 };
 
-/// Evaluates the samples of level l on a posed base mesh: `origins` are the points on the
-/// flat subdivided surface, `directions` the unit interpolated vertex normals there (eq. 3 of
-/// the method, normalised so a displacement is a distance). `positions` and `normals` are per
-/// base vertex (base_vertex_count() of each).
+/// Evaluates the samples of level l on a posed base mesh: `origins` are the points on the flat
+/// subdivided surface, `directions` the unit interpolated vertex normals there (eq. 3 of
+/// docs/encoder-method.md, normalised so a displacement is a distance). `positions` and `normals`
+/// are per base vertex (base_vertex_count() of each).
 void EvaluateSampleFrames(const RegularSubdivision& subdivision, int level,
                           std::span<const Eigen::Vector3f> positions,
                           std::span<const Eigen::Vector3f> normals,

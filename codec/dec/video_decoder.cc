@@ -94,8 +94,6 @@ Status VideoDecoder::Flush(std::vector<GreyPicture>* out) {
   return Receive(out);
 }
 
-void VideoDecoder::Reset() { avcodec_flush_buffers(impl_->context.get()); }
-
 Status VideoDecoder::Receive(std::vector<GreyPicture>* out) {
   Impl& impl = *impl_;
   while (true) {

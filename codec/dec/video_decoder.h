@@ -13,7 +13,7 @@
 namespace meshvid {
 
 /// Decodes a 10-bit grey video stream. Feed the packets of one group of frames in decoding
-/// order, then Flush(); Reset() before jumping to another group.
+/// order, then Flush(). A decoder serves one group: MvidDecoder creates one per group it decodes.
 class VideoDecoder {
  public:
   ~VideoDecoder();
@@ -25,8 +25,6 @@ class VideoDecoder {
   Status Decode(const VideoPacket& packet, std::vector<GreyPicture>* out);
   /// Drains the pictures still held by the decoder.
   Status Flush(std::vector<GreyPicture>* out);
-  /// Forgets all state, ready for the first packet of another group of frames.
-  void Reset();
 
  private:
   VideoDecoder() = default;

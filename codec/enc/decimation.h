@@ -1,5 +1,5 @@
-// Mesh decimation with OpenMesh's decimater: the automatic base mesh (method.md "Base mesh")
-// and the encoder's correspondence proxies (a few per cent of each view's triangles).
+// Mesh decimation with OpenMesh's decimater: the automatic base mesh (docs/encoder-method.md
+// section 1) and the encoder's correspondence proxies (a few per cent of each view's triangles).
 #ifndef MESHVID_CODEC_ENC_DECIMATION_H_
 #define MESHVID_CODEC_ENC_DECIMATION_H_
 

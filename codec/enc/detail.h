@@ -1,5 +1,5 @@
-// Surface detail (method.md section 6): per frame, the posed and subdivided base mesh shoots
-// its interpolated normals into every view's full-resolution mesh; the hits of all views are
+// Surface detail (docs/encoder-method.md section 4): per frame, the posed and subdivided base mesh
+// shoots its interpolated normals into every view's full-resolution mesh; the hits of all views are
 // fused into one displacement per sample, and hole filling makes every frame complete.
 #ifndef MESHVID_CODEC_ENC_DETAIL_H_
 #define MESHVID_CODEC_ENC_DETAIL_H_
@@ -40,7 +40,7 @@ struct SampleGraph {
   static SampleGraph Build(const RegularSubdivision& subdivision);
 };
 
-/// Fills the misses (kNoHit) of a group of consecutive frames (method.md section 6): a
+/// Fills the misses (kNoHit) of a group of consecutive frames (docs/encoder-method.md section 4): a
 /// missing sample takes the average of its nearest measurements before and after it in time
 /// (`last_measured` carries each sample's latest measurement across groups) and of its
 /// measured lattice neighbours in the same frame; what is still missing is filled by

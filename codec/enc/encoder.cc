@@ -29,43 +29,45 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
 Status CheckOptions(const EncoderOptions& o) {
   auto bad = [](const std::string& what) { return InvalidArgumentError(what); };
   if (o.levels < 0 || o.levels > RegularSubdivision::kMaxLevels) {
-    return bad("--levels must be in 0.." + std::to_string(RegularSubdivision::kMaxLevels));
+    return bad("levels must be in 0.." + std::to_string(RegularSubdivision::kMaxLevels));
   }
-  if (o.quality < 0 || o.quality > 100) return bad("--quality must be in 0..100");
-  if (o.effort < 0 || o.effort > 9) return bad("--effort must be in 0..9");
-  if (o.gof_size < 1 || o.gof_size > 1024) return bad("--gof must be in 1..1024");
-  if (o.window < 2) return bad("--window must be at least 2 frames");
-  if (o.key_group_window < 2) return bad("--key-group-window must be at least 2 frames");
+  if (o.quality < 0 || o.quality > 100) return bad("quality must be in 0..100");
+  if (o.effort < 0 || o.effort > 9) return bad("effort must be in 0..9");
+  if (o.gof_size < 1 || o.gof_size > 1024) return bad("gof_size must be in 1..1024");
+  if (o.window < 2) return bad("window must be at least 2 frames");
+  if (o.key_group_window < 2) return bad("key_group_window must be at least 2 frames");
   if (!(o.key_group_threshold >= 0 && o.key_group_threshold <= 1)) {
-    return bad("--key-group-threshold must be in [0, 1]");
+    return bad("key_group_threshold must be in [0, 1]");
   }
-  if (o.max_key_groups < 0) return bad("--max-key-groups must be >= 0 (0: no limit)");
-  if (o.base_vertices < 4) return bad("--base-vertices must be at least 4");
-  if (o.base_fusion_points < 100) return bad("--base-fusion-points must be at least 100");
+  if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
+  if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
+  if (o.base_fusion_points < 100) return bad("base_fusion_points must be at least 100");
   if (!(o.proxy_fraction > 0 && o.proxy_fraction <= 1)) {
-    return bad("--proxy-fraction must be in (0, 1]");
+    return bad("proxy_fraction must be in (0, 1]");
   }
   if (!(o.max_angle_degrees > 0 && o.max_angle_degrees < 90)) {
-    return bad("--max-angle must be in (0, 90) degrees");
+    return bad("max_angle_degrees must be in (0, 90) degrees");
   }
   if (!(o.tolerance_shrink > 0 && o.tolerance_shrink < 1)) {
-    return bad("--tol-shrink must be in (0, 1)");
+    return bad("tolerance_shrink must be in (0, 1)");
   }
-  if (o.initial_tolerance_factor < 1) return bad("--tol-start must be at least 1");
-  if (o.occlusion_frames < -1) return bad("--occlusion-frames must be >= 0 (or -1: automatic)");
-  if (o.seed_vertices < 0) return bad("--seed-vertices must be >= 0");
+  if (o.initial_tolerance_factor < 1) return bad("initial_tolerance_factor must be at least 1");
+  if (o.occlusion_frames < -1) return bad("occlusion_frames must be >= 0 (or -1: automatic)");
+  if (o.seed_vertices < 0) return bad("seed_vertices must be >= 0");
   if (!(o.max_turn_degrees > 0 && o.max_turn_degrees <= 180)) {
-    return bad("--max-turn must be in (0, 180] degrees");
+    return bad("max_turn_degrees must be in (0, 180] degrees");
   }
   if (!(o.min_solved_share >= 0 && o.min_solved_share <= 1)) {
-    return bad("--min-solved must be in [0, 1]");
+    return bad("min_solved_share must be in [0, 1]");
   }
-  if (o.patch_vertices < 0) return bad("--patch-vertices must be >= 0");
-  if (!(o.patch_stiffness > 0)) return bad("--stiffness must be positive");
-  if (o.max_segments < 1 || o.max_segments > 65535) return bad("--max-segments must be in 1..65535");
+  if (o.patch_vertices < 0) return bad("patch_vertices must be >= 0");
+  if (!(o.patch_stiffness > 0)) return bad("patch_stiffness must be positive");
+  if (o.max_segments < 1 || o.max_segments > 65535) return bad("max_segments must be in 1..65535");
   if (o.max_distance < 0 || o.tolerance < 0 || o.detail_max_distance < 0 ||
       o.outlier_distance < 0 || o.base_max_error < 0) {
-    return bad("lengths must not be negative (0 derives them from the data)");
+    return bad(
+        "max_distance, tolerance, detail_max_distance, outlier_distance and base_max_error "
+        "must not be negative (0 derives them from the data)");
   }
   return Status::Ok();
 }

@@ -1,5 +1,6 @@
-// The meshvid encoder: a multi-view capture in, a .mvid out, by the method of method.md
-// (base mesh, multi-frame piecewise-rigid segmentation, fused displacement video).
+// The meshvid encoder: a multi-view capture in, a .mvid out, by the method of
+// docs/encoder-method.md (base mesh, multi-frame piecewise-rigid segmentation, fused displacement
+// video).
 #ifndef MESHVID_CODEC_ENC_ENCODER_H_
 #define MESHVID_CODEC_ENC_ENCODER_H_
 
@@ -10,23 +11,12 @@
 #include "codec/common/mesh.h"
 #include "codec/common/progress.h"
 #include "codec/common/video_codec.h"
+#include "codec/enc/frame_source.h"
 #include "codec/enc/mvid_writer.h"
 #include "format/container_writer.h"
 #include "format/status.h"
 
 namespace meshvid {
-
-/// The encoder's input: K views x M frames of range meshes in world coordinates. Frames are
-/// loaded on demand, a window at a time, so a long capture never has to be in memory whole.
-class FrameSource {
- public:
-  virtual ~FrameSource() = default;
-  virtual int frame_count() const = 0;
-  virtual int view_count() const = 0;
-  virtual double frame_rate() const = 0;
-  /// All views of frame `frame` (0-based), in view order. May be called from one thread only.
-  virtual StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const = 0;
-};
 
 /// Every setting of the encoder. Lengths are in scene units; 0 means "derived from the
 /// data's size" (a fraction of frame 0's bounding-box diagonal, given beside each).
@@ -46,12 +36,12 @@ struct EncoderOptions {
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;
 
-  // --- correspondence (method.md 5.1)
+  // --- correspondence (docs/encoder-method.md eq. 4)
   double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy
   double max_distance = 0;        ///< farthest correspondence along a normal (0: 8%)
   double max_angle_degrees = 60;  ///< largest angle between base normal and data normal
 
-  // --- segmentation (method.md 5.2-5.4)
+  // --- segmentation (docs/encoder-method.md section 3)
   double tolerance = 0;          ///< UserTol of eq. 6 (0: 0.5% of the diagonal)
   double initial_tolerance_factor = 3;  ///< the search starts at this x tolerance
   double tolerance_shrink = 0.8;        ///< factor applied to the tolerance per step
@@ -70,7 +60,7 @@ struct EncoderOptions {
   int patch_vertices = 40;
   double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
 
-  // --- detail (method.md section 6)
+  // --- detail (docs/encoder-method.md section 4)
   /// Subdivision levels of the displacement lattice. Measured on samba: level 3 costs 8x the
   /// bytes of level 2 at quality 40 and gains no accuracy while the motion errs by centimetres.
   int levels = 2;

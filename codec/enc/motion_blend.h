@@ -1,6 +1,6 @@
-// Motion for every base vertex (method.md 5.4, post-processing): vertices the segmentation
-// left unregistered get blend weights over the segments of their registered neighbours (the
-// paper's spatial interpolation of transforms, stated as skinning), and the tracks are
+// Motion for every base vertex (docs/encoder-method.md section 3.1, post-processing): vertices the
+// segmentation left unregistered get blend weights over the segments of their registered neighbours
+// (the paper's spatial interpolation of transforms, stated as skinning), and the tracks are
 // smoothed over time.
 #ifndef MESHVID_CODEC_ENC_MOTION_BLEND_H_
 #define MESHVID_CODEC_ENC_MOTION_BLEND_H_

@@ -12,7 +12,11 @@
 namespace meshvid {
 namespace {
 
-constexpr std::uint8_t kMotionVersion = 2;
+// motion_version 1 has no surface mask; 2 adds `mask_triangle_count` and the mask. A model
+// without a mask is written as version 1 (spec/mvid-codec.md 2.1), so the field is not spent on
+// saying "no mask".
+constexpr std::uint8_t kMotionVersionWithoutMask = 1;
+constexpr std::uint8_t kMotionVersionWithMask = 2;
 
 std::uint32_t ZigZagDelta(std::int32_t from, std::int32_t to) {
   const auto delta = static_cast<std::int32_t>(static_cast<std::uint32_t>(to) -
@@ -56,12 +60,13 @@ StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
   MESHVID_RETURN_IF_ERROR(CheckQuantization(quantization));
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(model, model.blends.size()));
   ByteWriter header;
-  header.PutU8(kMotionVersion);
+  const bool masked = !model.surface_triangles.empty();
+  header.PutU8(masked ? kMotionVersionWithMask : kMotionVersionWithoutMask);
   header.PutU32(std::bit_cast<std::uint32_t>(quantization.rotation_step));
   header.PutU32(std::bit_cast<std::uint32_t>(quantization.translation_step));
   header.PutU32(model.segment_count);
   header.PutU32(static_cast<std::uint32_t>(model.blends.size()));
-  header.PutU32(static_cast<std::uint32_t>(model.surface_triangles.size()));
+  if (masked) header.PutU32(static_cast<std::uint32_t>(model.surface_triangles.size()));
   ByteWriter body;
   for (const VertexBlend& blend : model.blends) {
     body.PutU8(blend.count);

@@ -23,6 +23,13 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   if (!(settings.frame_rate > 0) || settings.frame_rate > 1000) {
     return InvalidArgumentError("frame rate must be in (0, 1000]");
   }
+  if (settings.base.allow_reorder) {
+    // MOTN's blends and mask and the lattice are indexed by the decoder's base vertices and
+    // triangles: a coder that renumbers them without saying how would scramble the motion.
+    return InvalidArgumentError(
+        "base.allow_reorder must be false: a .mvid indexes its motion and displacements by base "
+        "vertex, so the base mesh coder must keep the vertex order or report it");
+  }
   std::unique_ptr<MvidWriter> writer(new MvidWriter());
   writer->settings_ = settings;
   writer->container_ = std::make_unique<ContainerWriter>(std::move(sink));

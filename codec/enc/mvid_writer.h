@@ -32,6 +32,7 @@ struct MvidWriterSettings {
   double frame_rate = 25.0;
   std::uint32_t frame_count = 0;  ///< total frames if known up front (0: unknown)
   MotionQuantization motion;
+  /// The base mesh coder; `base.allow_reorder` must stay false (Create refuses it).
   BaseMeshEncoding base;
   std::string metadata_json = "{}";  ///< free-form JSON object stored in the header
 };

@@ -1,5 +1,5 @@
-// Normal shooting (method.md eq. 2-3, forward mapping): from points on the base surface,
-// along their normals, find the data surface in either direction, with Embree.
+// Normal shooting (docs/encoder-method.md eq. 2-3, forward mapping): from points on the base
+// surface, along their normals, find the data surface in either direction, with Embree.
 #ifndef MESHVID_CODEC_ENC_NORMAL_SHOOTING_H_
 #define MESHVID_CODEC_ENC_NORMAL_SHOOTING_H_
 

@@ -1,10 +1,10 @@
-// Motion for the vertices the segmentation left unregistered (beyond method.md 5.4): they
-// are split into small patches, each a further segment with its own rigid track, and the
-// patches of a frame are solved jointly: each on its own correspondences, all held together
-// where they meet each other or a segment (as an embedded deformation graph is). A patch
-// the views do not see in a frame moves with its neighbours. The paper interpolates these
-// vertices' transforms from the segments around them, which fails where most of the
-// surface is unregistered (a dancer whose limbs leave the views).
+// Motion for the vertices the segmentation left unregistered (docs/encoder-method.md section 3.1):
+// they are split into small patches, each a further segment with its own rigid track, and the
+// patches of a frame are solved jointly: each on its own correspondences, all held together where
+// they meet each other or a segment (as an embedded deformation graph is). A patch the views do not
+// see in a frame moves with its neighbours. The paper interpolates these vertices' transforms from
+// the segments around them, which fails where most of the surface is unregistered (a dancer whose
+// limbs leave the views).
 #ifndef MESHVID_CODEC_ENC_PATCH_TRACKING_H_
 #define MESHVID_CODEC_ENC_PATCH_TRACKING_H_
 

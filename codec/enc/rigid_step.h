@@ -1,7 +1,7 @@
-// The pieces of a Gauss-Newton step of rigid transforms (method.md eq. 5) shared by the
-// segmentation and the patch tracking: one correspondence's terms, the damping, and the
-// update of a transform by a solved increment. An increment x = (w, d) about a centre c
-// moves a posed point p to p + w x (p - c) + d.
+// The pieces of a Gauss-Newton step of rigid transforms (docs/encoder-method.md eq. 5) shared by
+// the segmentation and the patch tracking: one correspondence's terms, the damping, and the update
+// of a transform by a solved increment. An increment x = (w, d) about a centre c moves a posed
+// point p to p + w x (p - c) + d.
 #ifndef MESHVID_CODEC_ENC_RIGID_STEP_H_
 #define MESHVID_CODEC_ENC_RIGID_STEP_H_
 

@@ -274,7 +274,7 @@ std::int32_t NearestSegment(const std::vector<std::vector<std::uint32_t>>& neigh
   return best < 0 ? -1 : labels[best];
 }
 
-/// Without --seed-vertices, a seed patch holds this fraction (1/divisor) of the base.
+/// Without seed_vertices, a seed patch holds this fraction (1/divisor) of the base.
 constexpr std::size_t kAutoSeedDivisor = 40;
 /// Seeds tried per segment allowed before the segmentation gives up.
 constexpr int kAttemptsPerSegment = 3;

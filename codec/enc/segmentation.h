@@ -1,5 +1,5 @@
-// The multi-frame piecewise-rigid segmentation of method.md section 5: base vertices are
-// grouped into segments, each following one rigid transform per frame, found jointly over the
+// The multi-frame piecewise-rigid segmentation of docs/encoder-method.md section 3: base vertices
+// are grouped into segments, each following one rigid transform per frame, found jointly over the
 // frames (eq. 5) on the vertices whose correspondences agree within a tolerance (eq. 6).
 #ifndef MESHVID_CODEC_ENC_SEGMENTATION_H_
 #define MESHVID_CODEC_ENC_SEGMENTATION_H_
@@ -35,7 +35,7 @@ struct SegmentationOptions {
   /// A segment must be solved (enough of its members agree) in at least this share of the
   /// frames after the first, or it is dropped as lost.
   float min_solved_share = 0.75f;
-  ShotLimits shot;                      ///< correspondence search (method.md 5.1)
+  ShotLimits shot;                      ///< correspondence search (docs/encoder-method.md eq. 4)
 };
 
 /// Correspondence targets: one per frame (the decimated views of that frame, appended).

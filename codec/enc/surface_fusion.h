@@ -1,6 +1,6 @@
 // Fusion of several range meshes of one instant (the views of one frame, in world
-// coordinates) into one surface: the automatic base mesh of every key group, and the
-// per-frame baseline of `meshvid bench`.
+// coordinates) into one surface: the automatic base mesh of every key group
+// (docs/encoder-method.md section 1), and the per-frame baseline of `meshvid bench`.
 #ifndef MESHVID_CODEC_ENC_SURFACE_FUSION_H_
 #define MESHVID_CODEC_ENC_SURFACE_FUSION_H_
 

@@ -14,55 +14,27 @@
 
 #include "format/output_file.h"
 #include "tools/bench/bd_rate.h"
+#include "tools/json/json_number.h"
 
 namespace meshvid {
 namespace {
 
 using nlohmann::json;
 
-json Number(double value) {
-  if (std::isnan(value)) return nullptr;
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  return value;
-}
-
-/// A value written by Number(); `key` names it in messages.
-double ToNumber(const json& value, const char* key) {
-  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
-  if (value.is_string()) {
-    const std::string s = value.get<std::string>();
-    if (s == "inf") return std::numeric_limits<double>::infinity();
-    if (s == "-inf") return -std::numeric_limits<double>::infinity();
-    throw std::invalid_argument(std::string("'") + key + "' is not a number");
-  }
-  return value.get<double>();
-}
-
-/// A number written by Number(); a missing key is 0.
-double GetNumber(const json& j, const char* key) {
-  const auto it = j.find(key);
-  return it == j.end() ? 0 : ToNumber(*it, key);
-}
-
-/// As GetNumber, but a missing key is NaN: a figure older records do not hold.
-double GetOptionalNumber(const json& j, const char* key) {
-  return j.contains(key) ? GetNumber(j, key) : std::numeric_limits<double>::quiet_NaN();
-}
-
-/// An array of numbers written by Number(); a missing key is an empty array.
+/// An array of numbers written by JsonNumber(); a missing key is an empty array.
 std::vector<double> GetNumbers(const json& j, const char* key) {
   std::vector<double> values;
   const auto it = j.find(key);
   if (it == j.end()) return values;
   if (!it->is_array()) throw std::invalid_argument(std::string("'") + key + "' is not an array");
   values.reserve(it->size());
-  for (const json& value : *it) values.push_back(ToNumber(value, key));
+  for (const json& value : *it) values.push_back(JsonNumberValue(value, key));
   return values;
 }
 
 json Numbers(const std::vector<double>& values) {
   json array = json::array();
-  for (double value : values) array.push_back(Number(RoundFrameFigure(value)));
+  for (double value : values) array.push_back(JsonNumber(RoundFrameFigure(value)));
   return array;
 }
 
@@ -103,16 +75,16 @@ json DivergenceToJson(const DivergenceCheck& d) {
           {"level", d.level},
           {"baseline_bits", d.baseline_bits},
           {"psnr", d.psnr},
-          {"ratio_limit", Number(d.ratio_limit)},
+          {"ratio_limit", JsonNumber(d.ratio_limit)},
           {"frames", d.frames},
           {"frames_within", d.frames_within},
-          {"share_within", Number(d.share_within)},
+          {"share_within", JsonNumber(d.share_within)},
           {"worst_frame", d.worst_frame},
-          {"worst_meshvid_accuracy_rms", Number(d.worst_meshvid_accuracy_rms)},
-          {"worst_baseline_accuracy_rms", Number(d.worst_baseline_accuracy_rms)},
-          {"worst_ratio", Number(d.worst_ratio)},
-          {"meshvid_d1_psnr", Number(d.meshvid_d1_psnr)},
-          {"baseline_d1_psnr", Number(d.baseline_d1_psnr)},
+          {"worst_meshvid_accuracy_rms", JsonNumber(d.worst_meshvid_accuracy_rms)},
+          {"worst_baseline_accuracy_rms", JsonNumber(d.worst_baseline_accuracy_rms)},
+          {"worst_ratio", JsonNumber(d.worst_ratio)},
+          {"meshvid_d1_psnr", JsonNumber(d.meshvid_d1_psnr)},
+          {"baseline_d1_psnr", JsonNumber(d.baseline_d1_psnr)},
           {"share_met", d.share_met},
           {"psnr_met", d.psnr_met}};
 }
@@ -128,16 +100,16 @@ DivergenceCheck DivergenceFromJson(const json& j) {
   d.level = j.value("level", -1);
   d.baseline_bits = j.value("baseline_bits", 0);
   d.psnr = j.value("psnr", std::string(kPsnrMeanOfFrames));
-  d.ratio_limit = GetOptionalNumber(j, "ratio_limit");
+  d.ratio_limit = JsonNumber(j, "ratio_limit");
   d.frames = j.value("frames", 0);
   d.frames_within = j.value("frames_within", 0);
-  d.share_within = GetOptionalNumber(j, "share_within");
+  d.share_within = JsonNumber(j, "share_within");
   d.worst_frame = j.value("worst_frame", -1);
-  d.worst_meshvid_accuracy_rms = GetOptionalNumber(j, "worst_meshvid_accuracy_rms");
-  d.worst_baseline_accuracy_rms = GetOptionalNumber(j, "worst_baseline_accuracy_rms");
-  d.worst_ratio = GetOptionalNumber(j, "worst_ratio");
-  d.meshvid_d1_psnr = GetOptionalNumber(j, "meshvid_d1_psnr");
-  d.baseline_d1_psnr = GetOptionalNumber(j, "baseline_d1_psnr");
+  d.worst_meshvid_accuracy_rms = JsonNumber(j, "worst_meshvid_accuracy_rms");
+  d.worst_baseline_accuracy_rms = JsonNumber(j, "worst_baseline_accuracy_rms");
+  d.worst_ratio = JsonNumber(j, "worst_ratio");
+  d.meshvid_d1_psnr = JsonNumber(j, "meshvid_d1_psnr");
+  d.baseline_d1_psnr = JsonNumber(j, "baseline_d1_psnr");
   d.share_met = j.value("share_met", false);
   d.psnr_met = j.value("psnr_met", false);
   return d;
@@ -152,9 +124,9 @@ json CostToJson(const StepCost& c) {
 StepCost CostFromJson(const json& j) {
   StepCost c;
   if (!j.is_object()) return c;
-  c.wall_seconds = GetNumber(j, "wall_seconds");
-  c.cpu_seconds = GetNumber(j, "cpu_seconds");
-  c.peak_rss_mb = GetNumber(j, "peak_rss_mb");
+  c.wall_seconds = JsonNumber(j, "wall_seconds");
+  c.cpu_seconds = JsonNumber(j, "cpu_seconds");
+  c.peak_rss_mb = JsonNumber(j, "peak_rss_mb");
   return c;
 }
 
@@ -167,11 +139,11 @@ json EncodeToJson(const BenchEncode& e) {
           {"file", e.file},
           {"frames", e.frames},
           {"levels", e.levels},
-          {"bytes_total", Number(e.bytes_total)},
-          {"seconds", Number(e.seconds)},
-          {"encode_fps", Number(e.encode_fps)},
-          {"peak_rss_mb", Number(e.peak_rss_mb)},
-          {"decode_fps", Number(e.decode_fps)},
+          {"bytes_total", JsonNumber(e.bytes_total)},
+          {"seconds", JsonNumber(e.seconds)},
+          {"encode_fps", JsonNumber(e.encode_fps)},
+          {"peak_rss_mb", JsonNumber(e.peak_rss_mb)},
+          {"decode_fps", JsonNumber(e.decode_fps)},
           {"command", e.command}};
 }
 
@@ -185,11 +157,11 @@ BenchEncode EncodeFromJson(const json& j) {
   e.file = j.value("file", "");
   e.frames = j.value("frames", 0);
   e.levels = j.value("levels", 0);
-  e.bytes_total = GetNumber(j, "bytes_total");
-  e.seconds = GetNumber(j, "seconds");
-  e.encode_fps = GetNumber(j, "encode_fps");
-  e.peak_rss_mb = GetNumber(j, "peak_rss_mb");
-  e.decode_fps = GetNumber(j, "decode_fps");
+  e.bytes_total = JsonNumber(j, "bytes_total");
+  e.seconds = JsonNumber(j, "seconds");
+  e.encode_fps = JsonNumber(j, "encode_fps");
+  e.peak_rss_mb = JsonNumber(j, "peak_rss_mb");
+  e.decode_fps = JsonNumber(j, "decode_fps");
   e.command = j.value("command", "");
   return e;
 }
@@ -202,21 +174,21 @@ json PointToJson(const BenchPoint& p) {
           {"ok", p.ok},
           {"error", p.error},
           {"frames", p.frames},
-          {"bytes_per_frame", Number(p.bytes_per_frame)},
-          {"mbit_per_s", Number(p.mbit_per_s)},
-          {"d1_psnr", Number(p.d1_psnr)},
-          {"d2_psnr", Number(p.d2_psnr)},
-          {"d1_psnr_mean_of_frames", Number(p.d1_psnr_mean_of_frames)},
-          {"d2_psnr_mean_of_frames", Number(p.d2_psnr_mean_of_frames)},
-          {"accuracy_rms", Number(p.accuracy_rms)},
-          {"completeness_rms", Number(p.completeness_rms)},
-          {"hausdorff", Number(p.hausdorff)},
-          {"coverage", Number(p.coverage)},
-          {"encode_fps", Number(p.encode_fps)},
-          {"decode_fps", Number(p.decode_fps)},
-          {"encode_peak_mb", Number(p.encode_peak_mb)},
-          {"decode_peak_mb", Number(p.decode_peak_mb)},
-          {"vertices", Number(p.vertices)},
+          {"bytes_per_frame", JsonNumber(p.bytes_per_frame)},
+          {"mbit_per_s", JsonNumber(p.mbit_per_s)},
+          {"d1_psnr", JsonNumber(p.d1_psnr)},
+          {"d2_psnr", JsonNumber(p.d2_psnr)},
+          {"d1_psnr_mean_of_frames", JsonNumber(p.d1_psnr_mean_of_frames)},
+          {"d2_psnr_mean_of_frames", JsonNumber(p.d2_psnr_mean_of_frames)},
+          {"accuracy_rms", JsonNumber(p.accuracy_rms)},
+          {"completeness_rms", JsonNumber(p.completeness_rms)},
+          {"hausdorff", JsonNumber(p.hausdorff)},
+          {"coverage", JsonNumber(p.coverage)},
+          {"encode_fps", JsonNumber(p.encode_fps)},
+          {"decode_fps", JsonNumber(p.decode_fps)},
+          {"encode_peak_mb", JsonNumber(p.encode_peak_mb)},
+          {"decode_peak_mb", JsonNumber(p.decode_peak_mb)},
+          {"vertices", JsonNumber(p.vertices)},
           {"frame_accuracy_rms", Numbers(p.frame_accuracy_rms)},
           {"frame_d1_psnr", Numbers(p.frame_d1_psnr)},
           {"commands", p.commands}};
@@ -231,21 +203,21 @@ BenchPoint PointFromJson(const json& j) {
   p.ok = j.value("ok", false);
   p.error = j.value("error", "");
   p.frames = j.value("frames", 0);
-  p.bytes_per_frame = GetNumber(j, "bytes_per_frame");
-  p.mbit_per_s = GetNumber(j, "mbit_per_s");
-  p.d1_psnr = GetNumber(j, "d1_psnr");
-  p.d2_psnr = GetNumber(j, "d2_psnr");
-  p.d1_psnr_mean_of_frames = GetOptionalNumber(j, "d1_psnr_mean_of_frames");
-  p.d2_psnr_mean_of_frames = GetOptionalNumber(j, "d2_psnr_mean_of_frames");
-  p.accuracy_rms = GetNumber(j, "accuracy_rms");
-  p.completeness_rms = GetNumber(j, "completeness_rms");
-  p.hausdorff = GetNumber(j, "hausdorff");
-  p.coverage = GetNumber(j, "coverage");
-  p.encode_fps = GetNumber(j, "encode_fps");
-  p.decode_fps = GetNumber(j, "decode_fps");
-  p.encode_peak_mb = GetNumber(j, "encode_peak_mb");
-  p.decode_peak_mb = GetNumber(j, "decode_peak_mb");
-  p.vertices = GetNumber(j, "vertices");
+  p.bytes_per_frame = JsonNumber(j, "bytes_per_frame");
+  p.mbit_per_s = JsonNumber(j, "mbit_per_s");
+  p.d1_psnr = JsonNumber(j, "d1_psnr");
+  p.d2_psnr = JsonNumber(j, "d2_psnr");
+  p.d1_psnr_mean_of_frames = JsonNumber(j, "d1_psnr_mean_of_frames");
+  p.d2_psnr_mean_of_frames = JsonNumber(j, "d2_psnr_mean_of_frames");
+  p.accuracy_rms = JsonNumber(j, "accuracy_rms");
+  p.completeness_rms = JsonNumber(j, "completeness_rms");
+  p.hausdorff = JsonNumber(j, "hausdorff");
+  p.coverage = JsonNumber(j, "coverage");
+  p.encode_fps = JsonNumber(j, "encode_fps");
+  p.decode_fps = JsonNumber(j, "decode_fps");
+  p.encode_peak_mb = JsonNumber(j, "encode_peak_mb");
+  p.decode_peak_mb = JsonNumber(j, "decode_peak_mb");
+  p.vertices = JsonNumber(j, "vertices");
   p.frame_accuracy_rms = GetNumbers(j, "frame_accuracy_rms");
   p.frame_d1_psnr = GetNumbers(j, "frame_d1_psnr");
   if (j.contains("commands")) p.commands = j.at("commands").get<std::vector<std::string>>();
@@ -321,9 +293,9 @@ std::string BenchRecordToJson(const BenchRecord& r) {
                              {"level", b.level},
                              {"ok", b.ok},
                              {"psnr", b.psnr},
-                             {"delta", Number(b.delta)},
-                             {"psnr_low", Number(b.psnr_low)},
-                             {"psnr_high", Number(b.psnr_high)},
+                             {"delta", JsonNumber(b.delta)},
+                             {"psnr_low", JsonNumber(b.psnr_low)},
+                             {"psnr_high", JsonNumber(b.psnr_high)},
                              {"note", b.note}});
   }
   j["divergence"] = DivergenceToJson(r.divergence);
@@ -345,7 +317,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
     r.views = j.value("views", 0);
     r.layout = j.value("layout", "");
     r.frames = j.value("frames", 0);
-    r.frame_rate = GetNumber(j, "frame_rate");
+    r.frame_rate = JsonNumber(j, "frame_rate");
     r.eval_samples = j.value("eval_samples", 0);
     r.capture = j.value("capture", "");
     r.reference = j.value("reference", "");
@@ -355,7 +327,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
       const json& m = j.at("machine");
       r.machine.cpu_model = m.value("cpu_model", "");
       r.machine.cores = m.value("cores", 0);
-      r.machine.ram_gb = GetNumber(m, "ram_gb");
+      r.machine.ram_gb = JsonNumber(m, "ram_gb");
       r.machine.kernel = m.value("kernel", "");
     }
     if (j.contains("simulate")) {
@@ -370,10 +342,10 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
       r.baseline_ok = b.value("ok", false);
       r.baseline_error = b.value("error", "");
       r.baseline_command = b.value("command", "");
-      r.baseline_fuse_seconds = GetNumber(b, "fuse_seconds");
+      r.baseline_fuse_seconds = JsonNumber(b, "fuse_seconds");
       r.baseline_cost = CostFromJson(b.value("cost", json::object()));
     }
-    r.bench_process_peak_mb = GetNumber(j, "bench_process_peak_mb");
+    r.bench_process_peak_mb = JsonNumber(j, "bench_process_peak_mb");
     for (const json& e : j.value("encodes", json::array())) r.encodes.push_back(EncodeFromJson(e));
     for (const json& p : j.value("points", json::array())) r.points.push_back(PointFromJson(p));
     for (const json& b : j.value("bd_rates", json::array())) {
@@ -382,9 +354,9 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
       entry.level = b.value("level", 0);
       entry.ok = b.value("ok", false);
       entry.psnr = b.value("psnr", std::string(kPsnrOfMeanMse));
-      entry.delta = GetNumber(b, "delta");
-      entry.psnr_low = GetNumber(b, "psnr_low");
-      entry.psnr_high = GetNumber(b, "psnr_high");
+      entry.delta = JsonNumber(b, "delta");
+      entry.psnr_low = JsonNumber(b, "psnr_low");
+      entry.psnr_high = JsonNumber(b, "psnr_high");
       entry.note = b.value("note", "");
       r.bd_rates.push_back(entry);
     }

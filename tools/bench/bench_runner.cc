@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 
 #include "tools/bench/baseline.h"
@@ -15,6 +16,7 @@
 #include "tools/bench/bench_report.h"
 #include "tools/bench/child_process.h"
 #include "tools/bench/eval_figures.h"
+#include "tools/json/json_number.h"
 #include "tools/io/capture.h"
 
 namespace meshvid {
@@ -22,6 +24,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+/// A figure of the JSON a child process wrote (JsonNumber); NaN if it is not a number.
+double ChildFigure(const json& j, const char* key) {
+  try {
+    return JsonNumber(j, key);
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
 
 StatusOr<json> ReadJsonFile(const std::string& path) {
   MESHVID_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
@@ -441,7 +452,7 @@ Status Runner::Baseline(BenchRecord& record) {
                                 ? ReadJsonFile(decode_json)
                                 : StatusOr<json>(InternalError(ChildFailure(decode)));
     if (timing.ok()) {
-      point.decode_fps = JsonNumber(*timing, "frames_per_second");
+      point.decode_fps = ChildFigure(*timing, "frames_per_second");
       point.decode_peak_mb = decode->peak_rss_mb;
       point.ok = Evaluate(record, s.pattern, -1, stem, &point);
     } else {
@@ -505,7 +516,7 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
       if (j.ok() && j->contains("levels") && j->contains("frames") && j->contains("bytes")) {
         encode.levels = j->at("levels").get<int>();
         encode.frames = j->at("frames").get<int>();
-        encode.bytes_total = JsonNumber(j->at("bytes"), "file");
+        encode.bytes_total = ChildFigure(j->at("bytes"), "file");
         encode.encode_fps = encode.seconds > 0 ? encode.frames / encode.seconds : 0;
       } else {
         encode.ok = false;
@@ -551,10 +562,10 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
     if (run.ok() && run->ok()) {
       point.decode_peak_mb = run->peak_rss_mb;
       StatusOr<json> timing = ReadJsonFile(decode_json);
-      const double fps = timing.ok() ? JsonNumber(*timing, "frames_per_second") : NAN;
+      const double fps = timing.ok() ? ChildFigure(*timing, "frames_per_second") : NAN;
       // Without the decoder's own timing, the process's wall time (start-up included).
       point.decode_fps = std::isfinite(fps) ? fps : encode.frames / run->wall_seconds;
-      if (timing.ok()) point.vertices = JsonNumber(*timing, "vertices");
+      if (timing.ok()) point.vertices = ChildFigure(*timing, "vertices");
       point.ok = Evaluate(record, file, level, level_stem, &point);
     } else {
       point.error = "decode: " + ChildFailure(run);

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 
 #include "tools/bench/baseline.h"
+#include "tools/json/json_number.h"
 
 namespace meshvid {
 namespace {
@@ -23,18 +25,6 @@ bool SameFigure(double a, double b) {
 
 }  // namespace
 
-double JsonNumber(const json& j, const char* key) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return std::numeric_limits<double>::quiet_NaN();
-  if (it->is_string()) {
-    const std::string s = it->get<std::string>();
-    if (s == "inf") return std::numeric_limits<double>::infinity();
-    if (s == "-inf") return -std::numeric_limits<double>::infinity();
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return it->is_number() ? it->get<double>() : std::numeric_limits<double>::quiet_NaN();
-}
-
 StatusOr<EvalFigures> ParseEvalFigures(const std::string& text, const std::string& name) {
   const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded() || !j.is_object()) return CorruptError(name + ": not a JSON object");
@@ -42,25 +32,29 @@ StatusOr<EvalFigures> ParseEvalFigures(const std::string& text, const std::strin
     return CorruptError(name + " has no \"mean\"");
   }
   EvalFigures f;
-  const json& mean = j.at("mean");
-  f.d1_psnr = JsonNumber(mean, "d1_psnr");
-  f.d2_psnr = JsonNumber(mean, "d2_psnr");
-  f.d1_psnr_mean_of_frames = JsonNumber(mean, "d1_psnr_mean_of_frames");
-  f.d2_psnr_mean_of_frames = JsonNumber(mean, "d2_psnr_mean_of_frames");
-  f.accuracy_rms = JsonNumber(mean, "accuracy_rms");
-  f.completeness_rms = JsonNumber(mean, "completeness_rms");
-  f.hausdorff = JsonNumber(mean, "hausdorff");
-  f.coverage = JsonNumber(mean, "coverage");
-  const auto frames = j.find("frames");
-  if (frames != j.end() && frames->is_array()) {
-    f.frames = static_cast<int>(frames->size());
-    for (const json& frame : *frames) {
-      const bool object = frame.is_object();
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      f.frame_accuracy_rms.push_back(
-          RoundFrameFigure(object ? JsonNumber(frame, "accuracy_rms") : nan));
-      f.frame_d1_psnr.push_back(RoundFrameFigure(object ? JsonNumber(frame, "d1_psnr") : nan));
+  try {  // JsonNumber throws on a figure that is not a number
+    const json& mean = j.at("mean");
+    f.d1_psnr = JsonNumber(mean, "d1_psnr");
+    f.d2_psnr = JsonNumber(mean, "d2_psnr");
+    f.d1_psnr_mean_of_frames = JsonNumber(mean, "d1_psnr_mean_of_frames");
+    f.d2_psnr_mean_of_frames = JsonNumber(mean, "d2_psnr_mean_of_frames");
+    f.accuracy_rms = JsonNumber(mean, "accuracy_rms");
+    f.completeness_rms = JsonNumber(mean, "completeness_rms");
+    f.hausdorff = JsonNumber(mean, "hausdorff");
+    f.coverage = JsonNumber(mean, "coverage");
+    const auto frames = j.find("frames");
+    if (frames != j.end() && frames->is_array()) {
+      f.frames = static_cast<int>(frames->size());
+      for (const json& frame : *frames) {
+        const bool object = frame.is_object();
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        f.frame_accuracy_rms.push_back(
+            RoundFrameFigure(object ? JsonNumber(frame, "accuracy_rms") : nan));
+        f.frame_d1_psnr.push_back(RoundFrameFigure(object ? JsonNumber(frame, "d1_psnr") : nan));
+      }
     }
+  } catch (const std::invalid_argument& e) {
+    return CorruptError(name + ": " + e.what());
   }
   return f;
 }

@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "format/status.h"
 #include "tools/bench/bench_record.h"
 
@@ -31,10 +29,6 @@ struct EvalFigures {
   std::vector<double> frame_accuracy_rms;
   std::vector<double> frame_d1_psnr;
 };
-
-/// A number of a meshvid JSON file (eval, decode, info, encode summaries): "inf"/"-inf"
-/// strings are PSNRs of exact frames; a missing key, null or anything else is NaN.
-double JsonNumber(const nlohmann::json& j, const char* key);
 
 /// Parses the text of a `meshvid eval --json` file (`name` in messages). Fails with kCorrupt
 /// when it is not a JSON object with a "mean" object.

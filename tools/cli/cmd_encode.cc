@@ -1,9 +1,12 @@
-// `meshvid encode`: a multi-view capture to a .mvid (the method of method.md, end to end).
+// `meshvid encode`: a multi-view capture to a .mvid (base mesh, rigid motion, displacement video).
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -12,34 +15,12 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
-#include "tools/io/capture.h"
+#include "tools/io/capture_frame_source.h"
 #include "tools/io/file_pattern.h"
 #include "tools/io/mesh_io.h"
 
 namespace meshvid::cli {
 namespace {
-
-/// The capture as the encoder's frame source. The encoder reads a frame several times (its
-/// proxy, a key group's base, its detail): the last kCachedFrames frames stay parsed.
-class CaptureFrameSource : public FrameSource {
- public:
-  /// Parsed frames kept: a short key group is analysed and detailed within them (samba's
-  /// 3 views at 640x480: about 15 MB a frame).
-  static constexpr int kCachedFrames = 12;
-  explicit CaptureFrameSource(std::unique_ptr<CaptureSequence> capture)
-      : capture_(std::move(capture)), window_(capture_.get(), kCachedFrames) {}
-  int frame_count() const override { return capture_->frame_count(); }
-  int view_count() const override { return capture_->view_count(); }
-  double frame_rate() const override { return capture_->info().frame_rate; }
-  StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override {
-    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh>* views, window_.Get(frame));
-    return *views;
-  }
-
- private:
-  std::unique_ptr<CaptureSequence> capture_;
-  mutable CaptureWindow window_;
-};
 
 struct EncodeArguments {
   std::string capture;
@@ -52,10 +33,63 @@ struct EncodeArguments {
   EncoderOptions options;
 };
 
-std::string Kilobytes(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f kB", bytes / 1000.0);
-  return text;
+/// The encoder's messages name EncoderOptions' fields ("levels must be in 0..4"); the command
+/// line's user knows them by their flags. Field names with an underscore become their flag
+/// wherever they occur; plain words (quality, levels, window, ...) only as the message's first.
+Status WithFlagNames(const Status& status) {
+  static constexpr std::pair<std::string_view, std::string_view> kFlags[] = {
+      {"quality", "--quality"},
+      {"levels", "--levels"},
+      {"effort", "--effort"},
+      {"gof_size", "--gof"},
+      {"window", "--window"},
+      {"base_fusion_points", "--base-fusion-points"},
+      {"key_group_threshold", "--key-group-threshold"},
+      {"max_key_groups", "--max-key-groups"},
+      {"key_group_window", "--key-group-window"},
+      {"base_vertices", "--base-vertices"},
+      {"base_max_error", "--base-max-error"},
+      {"base_max_normal_deviation_degrees", "--base-max-normal-deviation"},
+      {"tolerance", "--tol"},
+      {"initial_tolerance_factor", "--tol-start"},
+      {"tolerance_shrink", "--tol-shrink"},
+      {"occlusion_frames", "--occlusion-frames"},
+      {"min_segment_vertices", "--min-segment"},
+      {"seed_vertices", "--seed-vertices"},
+      {"max_turn_degrees", "--max-turn"},
+      {"min_solved_share", "--min-solved"},
+      {"max_segments", "--max-segments"},
+      {"icp_iterations", "--icp-iterations"},
+      {"track_smoothing", "--smoothing"},
+      {"patch_vertices", "--patch-vertices"},
+      {"patch_stiffness", "--stiffness"},
+      {"proxy_fraction", "--proxy-fraction"},
+      {"max_distance", "--max-distance"},
+      {"max_angle_degrees", "--max-angle"},
+      {"detail_max_distance", "--detail-distance"},
+      {"outlier_distance", "--outlier-distance"},
+  };
+  if (status.code() != StatusCode::kInvalidArgument) return status;
+  const std::string& in = status.message();
+  const auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::string out;
+  for (std::size_t i = 0; i < in.size();) {
+    std::size_t end = i;
+    while (end < in.size() && is_word(in[end])) ++end;
+    if (end == i) {
+      out += in[i++];
+      continue;
+    }
+    const std::string_view word(in.data() + i, end - i);
+    std::string_view replacement = word;
+    const bool identifier = word.find('_') != std::string_view::npos;
+    for (const auto& [field, flag] : kFlags) {
+      if (word == field && (identifier || i == 0)) replacement = flag;
+    }
+    out += replacement;
+    i = end;
+  }
+  return {status.code(), out};
 }
 
 /// The file's rate at the capture's frame rate.
@@ -145,10 +179,11 @@ int RunEncode(EncodeArguments args) {
                                             "' (hevc, av1 or ffv1)"));
   }
   args.options.codec = *codec;
-  StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.capture);
-  if (!capture.ok()) return ReportError(capture.status());
+  StatusOr<std::unique_ptr<CaptureFrameSource>> source =
+      CaptureFrameSource::Open(args.capture);
+  if (!source.ok()) return ReportError(source.status());
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*capture)->frame_count());
+    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*source)->frame_count());
     if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
     args.options.first_frame = range->first;
     args.options.end_frame = range->second;
@@ -167,13 +202,12 @@ int RunEncode(EncodeArguments args) {
   // and a bad output path fails before any work.
   StatusOr<std::unique_ptr<OutputFile>> out = OutputFile::Open(args.output);
   if (!out.ok()) return ReportError(out.status().WithContext("-o"));
-  CaptureFrameSource source(std::move(*capture));
   ProgressBar bar(args.quiet);
   const auto start = std::chrono::steady_clock::now();
   StatusOr<EncodeSummary> summary = EncodeCapture(
-      source, OstreamSink((*out)->stream(), args.output), args.options, bar.Callback());
+      **source, OstreamSink((*out)->stream(), args.output), args.options, bar.Callback());
   bar.Finish();
-  if (!summary.ok()) return ReportError(summary.status());
+  if (!summary.ok()) return ReportError(WithFlagNames(summary.status()));
   const Status committed = (*out)->Commit();
   if (!committed.ok()) return ReportError(committed);
   const double seconds =

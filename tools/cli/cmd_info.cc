@@ -20,12 +20,6 @@ struct InfoArguments {
   bool json = false;
 };
 
-std::string Kilobytes(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.1f kB", bytes / 1000.0);
-  return text;
-}
-
 /// Decodes every group once (transforms and video), so a damaged stream is found.
 Status DecodeEveryGroup(MvidDecoder& decoder, const ProgressCallback& progress) {
   const MvidInfo& info = decoder.info();

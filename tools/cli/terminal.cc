@@ -11,6 +11,12 @@ int ReportError(const Status& status) {
   return 1;
 }
 
+std::string Kilobytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f kB", bytes / 1000.0);
+  return text;
+}
+
 ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0) {}
 
 ProgressBar::~ProgressBar() { Finish(); }

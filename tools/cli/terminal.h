@@ -1,4 +1,5 @@
-// Terminal output of the CLI: error reporting and the one progress bar every command uses.
+// Terminal output of the CLI: error reporting, byte counts and the one progress bar every
+// command uses.
 #ifndef MESHVID_TOOLS_CLI_TERMINAL_H_
 #define MESHVID_TOOLS_CLI_TERMINAL_H_
 
@@ -13,6 +14,9 @@ namespace meshvid::cli {
 
 /// Prints "meshvid: <status>" to stderr and returns the exit code for it (1).
 int ReportError(const Status& status);
+
+/// A byte count as the commands print it: "12.3 kB" (1 kB = 1000 bytes).
+std::string Kilobytes(double bytes);
 
 /// Draws progress on stderr: a redrawn bar with rate and ETA on a terminal, an occasional
 /// plain line otherwise (logs, CI), nothing if quiet.

@@ -8,16 +8,10 @@
 
 #include "format/output_file.h"
 #include "tools/eval/evaluation.h"
+#include "tools/json/json_number.h"
 
 namespace meshvid {
 namespace {
-
-/// A number for JSON; +-inf (an exact frame's PSNR) becomes the string "inf"/"-inf", NaN null.
-nlohmann::json JsonNumber(double value) {
-  if (std::isnan(value)) return nullptr;
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  return value;
-}
 
 nlohmann::json MetricsToJson(const FrameMetrics& m) {
   nlohmann::json j;

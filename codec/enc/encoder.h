@@ -26,11 +26,9 @@ struct EncoderOptions {
   /// frame 0's views and decimate.
   std::optional<TriangleMesh> base_mesh;
   std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
-  /// Points the fusion of a key frame's views keeps (thinned on a grid): fewer fuse faster.
-  /// Measured on samba's arc (the bench capture), frames 0-7, D1 PSNR: 20000 points 40.7 dB
-  /// (1.1 s a fusion), 40000 42.2 dB (1.6 s), 60000 41.8 dB (6.4 s); the unseen back, closed
-  /// by the fusion, dominates the error. A fusion that fails, or explains less than 75% of
-  /// its own frame's points, is redone at 60000 points.
+  /// Points the first fusion of a key frame's views keeps (thinned on a grid; fewer: faster,
+  /// a coarser voxel). A base that explains less than 75% of its own frame's points is fused
+  /// again from up to SurfaceFusionOptions::max_points (150,000) and the better kept.
   std::size_t base_fusion_points = 40000;
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;

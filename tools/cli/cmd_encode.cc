@@ -257,8 +257,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "segmented on this many frames spread over it and then tracked")
       ->capture_default_str();
   cmd->add_option("--base-fusion-points", o.base_fusion_points,
-                  "Points a key frame's fusion keeps for its base (fewer: faster; a fusion that "
-                  "fails or explains under 75% of its frame is redone at 60000)")
+                  "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
+                  "that explains under 75% of its frame is fused again from up to 150000)")
       ->capture_default_str();
   cmd->add_option("--key-group-threshold", o.key_group_threshold,
                   "Start a new key group (a fresh base fused from that frame) where the share "

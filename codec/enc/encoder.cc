@@ -18,11 +18,11 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   };
   Lengths l;
   l.scale = scale;
-  l.max_distance = pick(o.max_distance, 0.08);
-  l.tolerance = pick(o.tolerance, 0.005);
-  l.detail_max_distance = pick(o.detail_max_distance, 0.02);
-  l.outlier_distance = pick(o.outlier_distance, 0.005);
-  l.base_max_error = pick(o.base_max_error, 0.01);
+  l.max_distance = pick(o.tuning.max_distance, 0.08);
+  l.tolerance = pick(o.tuning.tolerance, 0.005);
+  l.detail_max_distance = pick(o.tuning.detail_max_distance, 0.02);
+  l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
+  l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   return l;
 }
 
@@ -34,40 +34,51 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.quality < 0 || o.quality > 100) return bad("quality must be in 0..100");
   if (o.effort < 0 || o.effort > 9) return bad("effort must be in 0..9");
   if (o.gof_size < 1 || o.gof_size > 1024) return bad("gof_size must be in 1..1024");
-  if (o.window < 2) return bad("window must be at least 2 frames");
-  if (o.key_group_window < 2) return bad("key_group_window must be at least 2 frames");
+  if (o.tuning.window < 2) return bad("tuning.window must be at least 2 frames");
+  if (o.tuning.key_group_window < 2) {
+    return bad("tuning.key_group_window must be at least 2 frames");
+  }
   if (!(o.key_group_threshold >= 0 && o.key_group_threshold <= 1)) {
     return bad("key_group_threshold must be in [0, 1]");
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
-  if (o.base_fusion_points < 100) return bad("base_fusion_points must be at least 100");
-  if (!(o.proxy_fraction > 0 && o.proxy_fraction <= 1)) {
-    return bad("proxy_fraction must be in (0, 1]");
+  if (o.tuning.base_fusion_points < 100) {
+    return bad("tuning.base_fusion_points must be at least 100");
   }
-  if (!(o.max_angle_degrees > 0 && o.max_angle_degrees < 90)) {
-    return bad("max_angle_degrees must be in (0, 90) degrees");
+  if (!(o.tuning.proxy_fraction > 0 && o.tuning.proxy_fraction <= 1)) {
+    return bad("tuning.proxy_fraction must be in (0, 1]");
   }
-  if (!(o.tolerance_shrink > 0 && o.tolerance_shrink < 1)) {
-    return bad("tolerance_shrink must be in (0, 1)");
+  if (!(o.tuning.max_angle_degrees > 0 && o.tuning.max_angle_degrees < 90)) {
+    return bad("tuning.max_angle_degrees must be in (0, 90) degrees");
   }
-  if (o.initial_tolerance_factor < 1) return bad("initial_tolerance_factor must be at least 1");
-  if (o.occlusion_frames < -1) return bad("occlusion_frames must be >= 0 (or -1: automatic)");
-  if (o.seed_vertices < 0) return bad("seed_vertices must be >= 0");
-  if (!(o.max_turn_degrees > 0 && o.max_turn_degrees <= 180)) {
-    return bad("max_turn_degrees must be in (0, 180] degrees");
+  if (!(o.tuning.tolerance_shrink > 0 && o.tuning.tolerance_shrink < 1)) {
+    return bad("tuning.tolerance_shrink must be in (0, 1)");
   }
-  if (!(o.min_solved_share >= 0 && o.min_solved_share <= 1)) {
-    return bad("min_solved_share must be in [0, 1]");
+  if (o.tuning.initial_tolerance_factor < 1) {
+    return bad("tuning.initial_tolerance_factor must be at least 1");
   }
-  if (o.patch_vertices < 0) return bad("patch_vertices must be >= 0");
-  if (!(o.patch_stiffness > 0)) return bad("patch_stiffness must be positive");
-  if (o.max_segments < 1 || o.max_segments > 65535) return bad("max_segments must be in 1..65535");
-  if (o.max_distance < 0 || o.tolerance < 0 || o.detail_max_distance < 0 ||
-      o.outlier_distance < 0 || o.base_max_error < 0) {
+  if (o.tuning.occlusion_frames < -1) {
+    return bad("tuning.occlusion_frames must be >= 0 (or -1: automatic)");
+  }
+  if (o.tuning.seed_vertices < 0) return bad("tuning.seed_vertices must be >= 0");
+  if (!(o.tuning.max_turn_degrees > 0 && o.tuning.max_turn_degrees <= 180)) {
+    return bad("tuning.max_turn_degrees must be in (0, 180] degrees");
+  }
+  if (!(o.tuning.min_solved_share >= 0 && o.tuning.min_solved_share <= 1)) {
+    return bad("tuning.min_solved_share must be in [0, 1]");
+  }
+  if (o.tuning.patch_vertices < 0) return bad("tuning.patch_vertices must be >= 0");
+  if (!(o.tuning.patch_stiffness > 0)) return bad("tuning.patch_stiffness must be positive");
+  if (o.tuning.max_segments < 1 || o.tuning.max_segments > 65535) {
+    return bad("tuning.max_segments must be in 1..65535");
+  }
+  if (o.tuning.max_distance < 0 || o.tuning.tolerance < 0 || o.tuning.detail_max_distance < 0 ||
+      o.tuning.outlier_distance < 0 || o.tuning.base_max_error < 0) {
     return bad(
-        "max_distance, tolerance, detail_max_distance, outlier_distance and base_max_error "
-        "must not be negative (0 derives them from the data)");
+        "tuning.max_distance, tuning.tolerance, tuning.detail_max_distance, "
+        "tuning.outlier_distance and tuning.base_max_error must not be negative (0 derives "
+        "them from the data)");
   }
   return Status::Ok();
 }
@@ -88,7 +99,7 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
   const int frames = analysis.summary.frames;
   *samples += lattice.samples().size() * static_cast<std::size_t>(frames);
   // Chunks of whole groups of frames, at most about `window` frames.
-  const int chunk = std::max(1, options.window / options.gof_size) * options.gof_size;
+  const int chunk = std::max(1, options.tuning.window / options.gof_size) * options.gof_size;
   std::vector<float> last_measured;
   std::vector<Eigen::Vector3f> posed;
   for (int chunk_first = 0; chunk_first < frames; chunk_first += chunk) {
@@ -168,17 +179,18 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   summary.tolerance = ctx.lengths.tolerance;
   SegmentationOptions& seg = ctx.seg;
   seg.tolerance = ctx.lengths.tolerance;
-  seg.initial_tolerance_factor = static_cast<float>(options.initial_tolerance_factor);
-  seg.tolerance_shrink = static_cast<float>(options.tolerance_shrink);
-  seg.min_segment_vertices = options.min_segment_vertices;
-  seg.max_segments = options.max_segments;
-  seg.occlusion_frames = options.occlusion_frames;
-  seg.icp_iterations = options.icp_iterations;
-  seg.seed_vertices = options.seed_vertices;
-  seg.max_turn_per_frame = static_cast<float>(options.max_turn_degrees * M_PI / 180);
-  seg.min_solved_share = static_cast<float>(options.min_solved_share);
+  seg.initial_tolerance_factor = static_cast<float>(options.tuning.initial_tolerance_factor);
+  seg.tolerance_shrink = static_cast<float>(options.tuning.tolerance_shrink);
+  seg.min_segment_vertices = options.tuning.min_segment_vertices;
+  seg.max_segments = options.tuning.max_segments;
+  seg.occlusion_frames = options.tuning.occlusion_frames;
+  seg.icp_iterations = options.tuning.icp_iterations;
+  seg.seed_vertices = options.tuning.seed_vertices;
+  seg.max_turn_per_frame = static_cast<float>(options.tuning.max_turn_degrees * M_PI / 180);
+  seg.min_solved_share = static_cast<float>(options.tuning.min_solved_share);
   seg.shot.max_distance = ctx.lengths.max_distance;
-  seg.shot.min_abs_cos = static_cast<float>(std::cos(options.max_angle_degrees * M_PI / 180));
+  seg.shot.min_abs_cos =
+      static_cast<float>(std::cos(options.tuning.max_angle_degrees * M_PI / 180));
 
   MvidWriterSettings settings;
   settings.levels = options.levels;

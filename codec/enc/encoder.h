@@ -18,14 +18,12 @@
 
 namespace meshvid {
 
-/// Every setting of the encoder. Lengths are in scene units; 0 means "derived from the
-/// data's size" (a fraction of frame 0's bounding-box diagonal, given beside each).
-struct EncoderOptions {
+/// The encoder's internals: every default was chosen by measurement (bench/ENCODE.md,
+/// bench/RESULTS.md); change them to experiment, not to use the codec. Lengths are in scene
+/// units; 0 means "derived from the data's size" (a fraction of frame 0's bounding-box
+/// diagonal, given beside each).
+struct EncoderTuning {
   // --- base mesh
-  /// A user base mesh (an animator's control model), rigidly fitted to frame 0. Empty: fuse
-  /// frame 0's views and decimate.
-  std::optional<TriangleMesh> base_mesh;
-  std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
   /// Points the first fusion of a key frame's views keeps (thinned on a grid; fewer: faster,
   /// a coarser voxel). A base that explains less than 75% of its own frame's points is fused
   /// again from up to SurfaceFusionOptions::max_points (150,000) and the better kept.
@@ -59,11 +57,33 @@ struct EncoderOptions {
   double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
 
   // --- detail (docs/encoder-method.md section 4)
+  double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
+  double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
+
+  // --- analysis window
+  /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one
+  /// full-resolution frame and `window` displacement frames are held besides). A key group
+  /// that may not be cut (the last of max_key_groups) longer than this is segmented on
+  /// `window` frames spread evenly over it, and every frame is then tracked with the segments.
+  int window = 256;
+
+  // --- key groups
+  /// Frames a key group's segmentation analyses jointly before the fit decides where it
+  /// ends; past them its segments are tracked frame by frame while they explain the data.
+  int key_group_window = 48;
+};
+
+/// Every setting of the encoder: the few a user chooses, and the internals in `tuning`.
+struct EncoderOptions {
+  // --- base mesh
+  /// A user base mesh (an animator's control model), rigidly fitted to frame 0. Empty: fuse
+  /// frame 0's views and decimate.
+  std::optional<TriangleMesh> base_mesh;
+  std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
+  // --- detail
   /// Subdivision levels of the displacement lattice. Measured on samba: level 3 costs 8x the
   /// bytes of level 2 at quality 40 and gains no accuracy while the motion errs by centimetres.
   int levels = 2;
-  double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
-  double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
   /// Leave out of the decoded surface the base triangles no view saw in any frame (the
   /// method's unfilled pixels). Off by default: the whole base surface is decoded, its
   /// unseen parts carried by the motion and filled detail, as per-frame fusion closes holes.
@@ -74,26 +94,19 @@ struct EncoderOptions {
   int quality = 40;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
-  /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one
-  /// full-resolution frame and `window` displacement frames are held besides). A key group
-  /// that may not be cut (the last of max_key_groups) longer than this is segmented on
-  /// `window` frames spread evenly over it, and every frame is then tracked with the segments.
-  int window = 256;
-
   // --- key groups (a fresh base where tracking no longer explains the data)
   /// A new key group starts at a frame whose captured points farther from the tracked base
-  /// than the displacement range (detail_max_distance) exceed the key frame's share by more
+  /// than the displacement range (tuning.detail_max_distance) exceed the key frame's share by more
   /// than this (0..1). Smaller: more key groups, closer to per-frame fusion.
   double key_group_threshold = 0.02;
   /// Most key groups (0: no limit). 1 keeps one base and one connectivity for the whole
   /// capture, as the paper does (for editing).
   int max_key_groups = 0;
-  /// Frames a key group's segmentation analyses jointly before the fit decides where it
-  /// ends; past them its segments are tracked frame by frame while they explain the data.
-  int key_group_window = 48;
   int first_frame = 0;           ///< frames [first_frame, end_frame) are encoded
   int end_frame = -1;            ///< -1: to the end
   std::string metadata_json = "{}";
+  /// The algorithm's internals (defaults measured; see EncoderTuning).
+  EncoderTuning tuning;
 };
 
 /// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).

@@ -90,7 +90,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   DecimationOptions decimation;
   decimation.target_vertices = options.base_vertices;
   decimation.max_error = ctx.lengths.base_max_error;
-  decimation.max_normal_deviation_degrees = options.base_max_normal_deviation_degrees;
+  decimation.max_normal_deviation_degrees = options.tuning.base_max_normal_deviation_degrees;
   if (fused.vertex_count() <= options.base_vertices) return fused;
   return DecimateMesh(fused, decimation);
 }
@@ -110,7 +110,7 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
   SegmentationOptions seg = ctx.seg;
   // A long capture of a non-rigid subject leaves few vertices rigid with their segment in
   // all but 5 frames; by default a tenth of the analysed frames may disagree.
-  if (options.occlusion_frames < 0) {
+  if (options.tuning.occlusion_frames < 0) {
     seg.occlusion_frames = std::max(5, static_cast<int>(targets.size()) / 10);
   }
   MESHVID_ASSIGN_OR_RETURN(Segmentation segmentation,
@@ -122,14 +122,14 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
   summary->registered_share = double(registered) / double(base.mesh.vertex_count());
   result.labels = segmentation.labels;
   result.segment_count = segmentation.segment_count;
-  if (options.patch_vertices > 0) {
+  if (options.tuning.patch_vertices > 0) {
     // Patches over the unregistered vertices, tracked jointly through the frames.
     PatchTrackingOptions patching;
-    patching.patch_vertices = options.patch_vertices;
-    patching.max_segments = options.max_segments;
-    patching.stiffness = static_cast<float>(options.patch_stiffness);
+    patching.patch_vertices = options.tuning.patch_vertices;
+    patching.max_segments = options.tuning.max_segments;
+    patching.stiffness = static_cast<float>(options.tuning.patch_stiffness);
     result.segment_count = PartitionUnregistered(base, segmentation.segment_count,
-                                                 options.min_segment_vertices, patching,
+                                                 options.tuning.min_segment_vertices, patching,
                                                  &result.labels);
     MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
                                          result.segment_count, targets, seg, patching,
@@ -221,7 +221,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views,
                              ctx.source.LoadFrame(analysed[k]));
     MESHVID_ASSIGN_OR_RETURN((*proxies)[analysed[k]],
-                             BuildProxy(views, options.proxy_fraction));
+                             BuildProxy(views, options.tuning.proxy_fraction));
   }
   analysis->seconds_proxies += SecondsSince(stage_start);
   std::vector<const ShootingTarget*> targets;
@@ -238,14 +238,14 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     if ((t - start) % stride == 0) continue;
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.proxy_fraction));
+    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
     const auto& previous = tracks[t - start - 1];
     tracks[t - start] = proxy.target ? TrackSegments(topology, segmented.labels,
                                                      segmented.segment_count, *proxy.target,
                                                      previous, ctx.seg)
                                      : previous;
   }
-  SmoothTracks(options.track_smoothing, &tracks);
+  SmoothTracks(options.tuning.track_smoothing, &tracks);
   analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
                                             segmented.segment_count,
                                             /*smoothing=*/4,
@@ -269,7 +269,7 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
                                         const FrameProxy& proxy) {
   const SurfaceFusionOptions defaults;
-  const std::size_t fast = std::min(ctx.options.base_fusion_points, defaults.max_points);
+  const std::size_t fast = std::min(ctx.options.tuning.base_fusion_points, defaults.max_points);
   StatusOr<TriangleMesh> base = MakeBaseMesh(ctx, views, proxy.target.get(), fast);
   if (ctx.options.base_mesh || fast >= defaults.max_points) return base;
   double unexplained = 1;
@@ -304,7 +304,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {
-      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.proxy_fraction));
+      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.tuning.proxy_fraction));
     }
     MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
@@ -315,7 +315,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
 
   if (!may_cut) {
     // Every remaining frame, or `window` of them spread evenly, segmented jointly.
-    const int stride = (ctx.end - start + options.window - 1) / options.window;
+    const int stride = (ctx.end - start + options.tuning.window - 1) / options.tuning.window;
     MESHVID_RETURN_IF_ERROR(
         SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis).status());
     summary.frames = ctx.end - start;
@@ -340,8 +340,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   SegmentedMotion segmented;
   int stop = start;
   int kept = start;
-  for (const int window : {std::min(kFirstKeyGroupWindow, options.key_group_window),
-                           options.key_group_window}) {
+  for (const int window : {std::min(kFirstKeyGroupWindow, options.tuning.key_group_window),
+                           options.tuning.key_group_window}) {
     if (stop > start && (kept < stop || stop == ctx.end || window <= stop - start)) break;
     stop = std::min(ctx.end, start + window);
     MESHVID_ASSIGN_OR_RETURN(segmented,
@@ -366,7 +366,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.proxy_fraction));
+    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction));
     const FrameProxy& proxy = proxies[t];
     const std::vector<RigidTransform> previous = tracks.back();
     tracks.push_back(proxy.target ? TrackSegments(topology, segmented.labels,

@@ -70,7 +70,9 @@ Status WithFlagNames(const Status& status) {
       {"outlier_distance", "--outlier-distance"},
   };
   if (status.code() != StatusCode::kInvalidArgument) return status;
-  const std::string& in = status.message();
+  // Internals are named tuning.FIELD; their flags do not say "tuning".
+  std::string in = status.message();
+  for (std::size_t at; (at = in.find("tuning.")) != std::string::npos;) in.erase(at, 7);
   const auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   std::string out;
   for (std::size_t i = 0; i < in.size();) {
@@ -251,12 +253,12 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--gof", o.gof_size, "Frames per group (random-access unit)")
       ->capture_default_str();
-  cmd->add_option("--window", o.window,
+  cmd->add_option("--window", o.tuning.window,
                   "Most frames the segmentation analyses jointly (and displacement frames "
                   "filled together); a key group that may not be cut and is longer is "
                   "segmented on this many frames spread over it and then tracked")
       ->capture_default_str();
-  cmd->add_option("--base-fusion-points", o.base_fusion_points,
+  cmd->add_option("--base-fusion-points", o.tuning.base_fusion_points,
                   "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
                   "that explains under 75% of its frame is fused again from up to 150000)")
       ->capture_default_str();
@@ -269,7 +271,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
                   "capture (for editing), 0: no limit")
       ->capture_default_str();
-  cmd->add_option("--key-group-window", o.key_group_window,
+  cmd->add_option("--key-group-window", o.tuning.key_group_window,
                   "Frames a key group's segmentation analyses jointly before the fit decides "
                   "where it ends; past them its segments are tracked frame by frame")
       ->capture_default_str();
@@ -279,72 +281,72 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--base-vertices", o.base_vertices,
                   "Vertices of the automatic base mesh after decimation")
       ->capture_default_str();
-  cmd->add_option("--base-max-error", o.base_max_error,
+  cmd->add_option("--base-max-error", o.tuning.base_max_error,
                   "Largest surface change a decimation step may make (0: 1% of the size)")
       ->capture_default_str();
-  cmd->add_option("--base-max-normal-deviation", o.base_max_normal_deviation_degrees,
+  cmd->add_option("--base-max-normal-deviation", o.tuning.base_max_normal_deviation_degrees,
                   "Largest normal change of a decimation step, degrees")
       ->capture_default_str();
-  cmd->add_option("--tol", o.tolerance,
+  cmd->add_option("--tol", o.tuning.tolerance,
                   "Segmentation tolerance UserTol (eq. 6): largest distance between a "
                   "vertex moved by its segment and the data (0: 0.5% of the size)")
       ->capture_default_str();
-  cmd->add_option("--tol-start", o.initial_tolerance_factor,
+  cmd->add_option("--tol-start", o.tuning.initial_tolerance_factor,
                   "Each frame's search starts at this multiple of --tol")
       ->capture_default_str();
-  cmd->add_option("--tol-shrink", o.tolerance_shrink, "Tolerance factor per step, in (0, 1)")
+  cmd->add_option("--tol-shrink", o.tuning.tolerance_shrink, "Tolerance factor per step, in (0, 1)")
       ->capture_default_str();
-  cmd->add_option("--occlusion-frames", o.occlusion_frames,
+  cmd->add_option("--occlusion-frames", o.tuning.occlusion_frames,
                   "Frames in which a vertex's data may disagree with its segment and it "
                   "stays (frames without data cost nothing; -1: a tenth of the key "
                   "frames, at least 5)")
       ->capture_default_str();
-  cmd->add_option("--min-segment", o.min_segment_vertices,
+  cmd->add_option("--min-segment", o.tuning.min_segment_vertices,
                   "Smallest segment kept (vertices, >= 3)")
       ->capture_default_str();
-  cmd->add_option("--seed-vertices", o.seed_vertices,
+  cmd->add_option("--seed-vertices", o.tuning.seed_vertices,
                   "Vertices of the patch around a seed vertex that each segment is first "
                   "tracked with, then grown from (0: a fortieth of the base mesh)")
       ->capture_default_str();
-  cmd->add_option("--max-turn", o.max_turn_degrees,
+  cmd->add_option("--max-turn", o.tuning.max_turn_degrees,
                   "Most a segment may turn between frames, in degrees; a solve that turns "
                   "it more is not believed")
       ->capture_default_str();
-  cmd->add_option("--min-solved", o.min_solved_share,
+  cmd->add_option("--min-solved", o.tuning.min_solved_share,
                   "Share of frames in which a segment's data must agree with it; a segment "
                   "solved in fewer has lost its data and is dropped (its vertices are "
                   "interpolated)")
       ->capture_default_str();
-  cmd->add_option("--max-segments", o.max_segments, "Most segments")->capture_default_str();
-  cmd->add_option("--icp-iterations", o.icp_iterations,
+  cmd->add_option("--max-segments", o.tuning.max_segments, "Most segments")->capture_default_str();
+  cmd->add_option("--icp-iterations", o.tuning.icp_iterations,
                   "Correspondence and rigid solve rounds per tolerance step")
       ->capture_default_str();
-  cmd->add_option("--smoothing", o.track_smoothing,
+  cmd->add_option("--smoothing", o.tuning.track_smoothing,
                   "Passes of (t-1, t, t+1) smoothing of the rigid tracks")
       ->capture_default_str();
-  cmd->add_option("--patch-vertices", o.patch_vertices,
+  cmd->add_option("--patch-vertices", o.tuning.patch_vertices,
                   "Vertices per patch that the segmentation's unregistered vertices are split "
                   "into; patches are tracked jointly, held together where they meet (0: "
                   "interpolate those vertices from the segments, as the paper does)")
       ->capture_default_str();
-  cmd->add_option("--stiffness", o.patch_stiffness,
+  cmd->add_option("--stiffness", o.tuning.patch_stiffness,
                   "Weight of neighbouring patches and segments agreeing where they meet, "
                   "against the data")
       ->capture_default_str();
-  cmd->add_option("--proxy-fraction", o.proxy_fraction,
+  cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,
                   "Share of each view's vertices kept in its correspondence proxy")
       ->capture_default_str();
-  cmd->add_option("--max-distance", o.max_distance,
+  cmd->add_option("--max-distance", o.tuning.max_distance,
                   "Farthest correspondence along a normal; also the coarsest tolerance of a new "
                   "frame's search (0: 8% of the size)")
       ->capture_default_str();
-  cmd->add_option("--max-angle", o.max_angle_degrees,
+  cmd->add_option("--max-angle", o.tuning.max_angle_degrees,
                   "Largest angle between a shooting normal and the data's normal, degrees")
       ->capture_default_str();
-  cmd->add_option("--detail-distance", o.detail_max_distance,
+  cmd->add_option("--detail-distance", o.tuning.detail_max_distance,
                   "Farthest displacement measured along a sample normal (0: 2% of the size)")
       ->capture_default_str();
-  cmd->add_option("--outlier-distance", o.outlier_distance,
+  cmd->add_option("--outlier-distance", o.tuning.outlier_distance,
                   "Hits this far from the views' median are dropped (0: 0.5% of the size)")
       ->capture_default_str();
   cmd->add_flag("--hide-unseen", o.hide_unseen,

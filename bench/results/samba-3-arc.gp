@@ -9,25 +9,25 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.86708 44.8471
-2.86389 44.8801
-4.16503 44.8821
-5.56517 44.8822
+16.7735 38.7879
+28.2354 38.7546
+46.6505 38.7496
+68.3818 38.7496
 EOD
 $s1 << EOD
-1.16798 44.0768
-1.59338 44.1607
-3.79122 44.2281
+2.50663 38.6158
+2.96553 38.6113
+6.05063 38.6223
 EOD
 $s2 << EOD
-1.16798 44.1726
-1.59338 44.2543
-3.79122 44.3229
+2.50663 38.6341
+2.96553 38.6272
+6.05063 38.6392
 EOD
 $s3 << EOD
-1.16798 44.2853
-1.59338 44.3551
-3.79122 44.3937
+2.50663 38.6464
+2.96553 38.6451
+6.05063 38.6504
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -153,6 +153,9 @@ TEST(CaptureManifestTest, BadFieldsNameTheManifestAndJsonPath) {
            "source)"},
       {head + R"("frame_rate": -1, "views": [{}], "frames": [["a.ply"]]})",
        m + ": frame_rate must be > 0"},
+      // A rate the .mvid writer refuses is refused here, before any file is read.
+      {head + R"("frame_rate": 1e308, "views": [{}], "frames": [["a.ply"]]})",
+       m + ": frame_rate must be at most 1000 (frames per second)"},
       {head + R"("views": [], "frames": [["a.ply"]]})",
        m + ": views must be a non-empty array of view objects"},
       {head + R"("views": [{}]})",

@@ -20,6 +20,8 @@ using Json = nlohmann::json;
 
 constexpr char kFormatName[] = "meshvid-capture";
 constexpr int kFormatVersion = 1;
+/// The highest frame_rate a manifest may state: the .mvid writer's limit (frames per second).
+constexpr double kMaxFrameRate = 1000;
 
 /// Shortest decimal text that reads back as the same float.
 std::string FloatText(float value) {
@@ -237,6 +239,10 @@ class ManifestReader {
     }
     CaptureInfo info;
     MESHVID_ASSIGN_OR_RETURN(info.frame_rate, Number(root, "frame_rate", "frame_rate", true, 25.0));
+    if (info.frame_rate > kMaxFrameRate) {
+      return Error("frame_rate", "must be at most " + std::to_string(int(kMaxFrameRate)) +
+                                     " (frames per second)");
+    }
     if (root.contains("units")) {
       if (!root["units"].is_string()) return Error("units", "must be a string");
       info.units = root["units"].get<std::string>();

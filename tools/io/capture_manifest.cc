@@ -1,5 +1,6 @@
 // The capture manifest (manifest.json, spec/capture-manifest.md): reading and writing.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iomanip>
@@ -208,6 +209,17 @@ class ManifestReader {
         return Error("first_frame", "must be a non-negative integer");
       }
       first_frame = value.get<int>();
+    }
+    // The count comes from the file: before expanding it into paths (up to 10^9 frames),
+    // the last frame's files must exist, so the paths are justified by what is on disk.
+    for (int v = 0; v < view_count; ++v) {
+      const std::string last = pattern->Expand(first_frame + frame_count - 1, v);
+      std::error_code error;
+      if (!std::filesystem::exists(last, error)) {
+        return Error("frame_count", "is " + std::to_string(frame_count) +
+                                        " but the last frame's view file " + last +
+                                        " does not exist");
+      }
     }
     for (int f = 0; f < frame_count; ++f) {
       std::vector<std::string> row;

@@ -180,7 +180,8 @@ void ContainerReader::ScanChunks() {
       const uint32_t gof_index = LoadLittleEndianU32(prefix.data());
       const uint32_t first_frame = LoadLittleEndianU32(prefix.data() + 4);
       const uint32_t frame_count = LoadLittleEndianU32(prefix.data() + 8);
-      if (gof_index != gof_count() || first_frame != next_frame || frame_count == 0) {
+      if (gof_index != gof_count() || first_frame != next_frame || frame_count == 0 ||
+          !FrameRangeFits(first_frame, frame_count)) {
         return stop(CorruptError(context + ": gof_index " + std::to_string(gof_index) +
                                  " first_frame " + std::to_string(first_frame) + " frame_count " +
                                  std::to_string(frame_count) + " break the GOF sequence"));

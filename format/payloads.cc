@@ -20,8 +20,9 @@ Status TooMany(const ByteReader& reader, std::string_view what, uint64_t count, 
 }  // namespace
 
 Status CheckHeader(const ContainerHeader& header) {
-  if (header.frame_rate_denominator == 0) {
-    return InvalidArgumentError("container header: frame_rate_denominator must not be 0");
+  if (header.frame_rate_numerator == 0 || header.frame_rate_denominator == 0) {
+    return InvalidArgumentError("container header: frame_rate_numerator and "
+                                "frame_rate_denominator must not be 0");
   }
   if (header.streams.size() > kMaxStreams) {
     return InvalidArgumentError("container header: " + std::to_string(header.streams.size()) +
@@ -71,6 +72,7 @@ StatusOr<ContainerHeader> DecodeHeaderPayload(std::span<const uint8_t> payload,
   MESHVID_ASSIGN_OR_RETURN(header.frame_rate_numerator, reader.ReadU32("frame_rate_numerator"));
   MESHVID_ASSIGN_OR_RETURN(header.frame_rate_denominator,
                            reader.ReadU32("frame_rate_denominator"));
+  if (header.frame_rate_numerator == 0) return reader.Error("frame_rate_numerator is 0 (0 fps)");
   if (header.frame_rate_denominator == 0) return reader.Error("frame_rate_denominator is 0");
   MESHVID_ASSIGN_OR_RETURN(header.frame_count, reader.ReadU32("frame_count"));
   MESHVID_ASSIGN_OR_RETURN(header.gof_size, reader.ReadU32("gof_size"));
@@ -127,6 +129,10 @@ StatusOr<GroupOfFrames> DecodeGofPayload(std::span<const uint8_t> payload, size_
   MESHVID_ASSIGN_OR_RETURN(gof.first_frame, reader.ReadU32("first_frame"));
   MESHVID_ASSIGN_OR_RETURN(gof.frame_count, reader.ReadU32("frame_count"));
   if (gof.frame_count == 0) return reader.Error("frame_count is 0");
+  if (!FrameRangeFits(gof.first_frame, gof.frame_count)) {
+    return reader.Error("first_frame " + std::to_string(gof.first_frame) + " + frame_count " +
+                        std::to_string(gof.frame_count) + " passes the last frame number");
+  }
   MESHVID_ASSIGN_OR_RETURN(const uint32_t transforms_size, reader.ReadU32("transforms_size"));
   MESHVID_ASSIGN_OR_RETURN(const auto transforms, reader.ReadBytes(transforms_size, "transforms"));
   gof.transforms.assign(transforms.begin(), transforms.end());
@@ -253,6 +259,11 @@ StatusOr<ContainerIndex> DecodeIndexPayload(std::span<const uint8_t> payload,
     MESHVID_ASSIGN_OR_RETURN(entry.frame_count, reader.ReadU32("frame_count"));
     if (entry.frame_count == 0) {
       return reader.Error("entry " + std::to_string(k) + " has frame_count 0");
+    }
+    if (!FrameRangeFits(entry.first_frame, entry.frame_count)) {
+      return reader.Error("entry " + std::to_string(k) + " first_frame " +
+                          std::to_string(entry.first_frame) + " + frame_count " +
+                          std::to_string(entry.frame_count) + " passes the last frame number");
     }
     if (k > 0) {
       const IndexEntry& previous = index.gofs[k - 1];

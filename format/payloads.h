@@ -97,6 +97,14 @@ class KeyGroupTracker {
   std::vector<KeyGroupEntry> key_groups_;
 };
 
+/// Largest frame number + 1 a file may reach: every frame count (a GOF's, a key group's, the
+/// whole file's) and first_frame + frame_count must fit in a u32.
+inline constexpr uint64_t kMaxFrameEnd = UINT32_MAX;
+/// True when frames [first_frame, first_frame + frame_count) end at most at kMaxFrameEnd.
+inline bool FrameRangeFits(uint32_t first_frame, uint32_t frame_count) {
+  return uint64_t{first_frame} + frame_count <= kMaxFrameEnd;
+}
+
 /// Checks a header a writer is about to store (rate, codec tags, sizes within the limits).
 Status CheckHeader(const ContainerHeader& header);
 

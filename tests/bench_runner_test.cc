@@ -119,7 +119,8 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   auto records = RunBench(bench.options, bench.events);
   ASSERT_TRUE(records.ok()) << records.status().ToString();
   ASSERT_EQ(records->size(), 1u);
-  const BenchRecord& r = (*records)[0];
+  // A copy: `records` is assigned again below (a reference would dangle; ASan caught it).
+  const BenchRecord r = (*records)[0];
   EXPECT_TRUE(r.simulate_ok) << r.simulate_error;
   EXPECT_EQ(r.frames, 2);
   EXPECT_DOUBLE_EQ(r.frame_rate, 50);

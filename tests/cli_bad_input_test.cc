@@ -203,5 +203,39 @@ TEST(InternalErrorTest, AnEscapingExceptionIsReportedWithExitCode3) {
             "meshvid: internal error: unknown exception\n");
 }
 
+TEST(BadInputCliTest, FrameCountsBeyondTheHeaderOrAnIntAreNamed) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  // HEAD claims 2^31 frames, the groups hold 6: info warns, --check fails.
+  const std::vector<uint8_t> claiming = testing::WithHeaderFrameCount(GoldenBytes(), 0x80000000u);
+  const std::string claims = dir.File("claims.mvid");
+  testing::WriteFile(claims, std::string(claiming.begin(), claiming.end()));
+  const testing::CliRun info = testing::RunMeshvid("info '" + claims + "'", dir);
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.err.find("warning: " + claims + ": its header declares 2147483648 frames but "
+                          "its groups hold 6 readable frames"),
+            std::string::npos)
+      << info.err;
+  const testing::CliRun check = testing::RunMeshvid("info --check '" + claims + "'", dir);
+  ExpectCleanFailure(check, "info --check");
+  EXPECT_NE(check.err.find("HEAD declares frame_count 2147483648"), std::string::npos)
+      << check.err;
+
+  // A last group claiming 2^31 - 1 frames after frame 4: 2^31 + 3 frames, more than eval's
+  // int frame numbers hold; refused by name instead of wrapping negative.
+  ASSERT_EQ(testing::RunMeshvid("decode '" + kGolden + "' -q -o '" + dir.File("g{frame}.obj") +
+                                    "'", dir).exit_code, 0);
+  StatusOr<std::vector<uint8_t>> huge = testing::WithHugeLastGroup(GoldenBytes(), 0x7FFFFFFFu);
+  ASSERT_TRUE(huge.ok());
+  const std::string file = dir.File("huge.mvid");
+  testing::WriteFile(file, std::string(huge->begin(), huge->end()));
+  const testing::CliRun eval = testing::RunMeshvid(
+      "eval --ref '" + dir.File("g{frame}.obj") + "' --test '" + file + "' --quiet", dir);
+  ExpectCleanFailure(eval, "eval");
+  EXPECT_NE(eval.err.find(file + ": 2147483651 frames; eval reads at most 2147483647"),
+            std::string::npos)
+      << eval.err;
+}
+
 }  // namespace
 }  // namespace meshvid

@@ -11,7 +11,11 @@
 #include "codec/dec/gof_side_info.h"
 #include "codec/dec/motion_decoder.h"
 #include "codec/dec/mvid_decoder.h"
+#include "codec/dec/video_decoder.h"
 #include "format/byte_io.h"
+#include "format/chunk.h"
+#include "format/crc32c.h"
+#include "format/validate.h"
 #include "tests/allocation_tracker.h"
 #include "tests/mvid_mutants.h"
 #include "tests/test_util.h"
@@ -28,6 +32,21 @@ using testing::AllocationTracker;
 std::vector<uint8_t> GoldenBytes() {
   const std::string text = testing::ReadFile(kGolden);
   return {text.begin(), text.end()};
+}
+
+/// The offset of the first chunk of `type` in `file` (0 if none).
+size_t ChunkOffset(const std::vector<uint8_t>& file, std::string_view type) {
+  for (const ChunkReport& chunk : ValidateContainer(file).chunks) {
+    if (chunk.type == type) return chunk.offset;
+  }
+  return 0;
+}
+
+/// Rewrites the CRC of the chunk at `offset` after a deliberate edit of its payload.
+void Reseal(std::vector<uint8_t>* file, size_t offset) {
+  const size_t end = offset + kChunkHeaderSize + LoadLittleEndianU64(file->data() + offset + 8);
+  const uint32_t crc = Crc32c(std::span<const uint8_t>(*file).subspan(offset, end - offset));
+  for (int i = 0; i < 4; ++i) (*file)[end + i] = static_cast<uint8_t>(crc >> (8 * i));
 }
 
 /// A transform block: frame_count, segment_count, then `frame`.
@@ -202,6 +221,75 @@ TEST(CodecBadInputTest, SideInformationWithHugeCountsIsRejectedBeforeAllocating)
   EXPECT_EQ(status.code(), StatusCode::kCorrupt);
   EXPECT_NE(status.message().find("2147483647 frames x 2 segments"), std::string::npos)
       << status.ToString();
+}
+
+TEST(CodecBadInputTest, ACutInsideBaseSaysTheBaseIsCut) {
+  std::vector<uint8_t> file = GoldenBytes();
+  const size_t base = ChunkOffset(file, "BASE");
+  ASSERT_GT(base, 0u);
+  file.resize(base + kChunkHeaderSize + 10);
+  const Status status = MvidDecoder::OpenMemory(file).status();
+  EXPECT_EQ(status.code(), StatusCode::kCorrupt);
+  EXPECT_NE(status.message().find("key group 0's BASE chunk is cut or damaged (the chunk scan "
+                                  "stopped: <memory>: chunk 'BASE' at offset " +
+                                  std::to_string(base) + ": payload_size"),
+            std::string::npos)
+      << status.ToString();
+  EXPECT_EQ(status.message().find("has no"), std::string::npos) << status.ToString();
+}
+
+TEST(CodecBadInputTest, PayloadDecoderErrorsNameTheFileAndGroup) {
+  // Group 1's side information gets an unknown displacement_packing (CRC resealed): the
+  // error must say which file and group, not only "group side information".
+  std::vector<uint8_t> file = GoldenBytes();
+  std::vector<size_t> gofs;
+  for (const ChunkReport& chunk : ValidateContainer(file).chunks) {
+    if (chunk.type == "GOF ") gofs.push_back(chunk.offset);
+  }
+  ASSERT_GE(gofs.size(), 2u);
+  // GOF payload: gof_index, first_frame, frame_count, transforms_size; then the side
+  // information: side_info_version, displacement_packing.
+  file[gofs[1] + kChunkHeaderSize + 16 + 1] = 7;
+  Reseal(&file, gofs[1]);
+  testing::TempDir dir;
+  const std::string path = dir.File("packing.mvid");
+  testing::WriteFile(path, std::string(file.begin(), file.end()));
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(path);
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  EXPECT_TRUE((*decoder)->DecodeFrame(0, 1).ok());
+  const Status damaged = (*decoder)->DecodeFrame(4, 1).status();
+  EXPECT_EQ(damaged.ToString(), "corrupt: " + path + ": group 1: group side information: "
+                                "unknown displacement_packing 7");
+}
+
+TEST(CodecBadInputTest, AVideoConfigurationTheDecoderRefusesIsCorruptData) {
+  // FFV1 parses its configuration record (with a CRC) when opening: garbage is damaged data
+  // from the file, not an internal error.
+  const std::vector<uint8_t> garbage = {3, 0x55, 0xAA, 0x55, 0xAA, 1, 2, 3, 4, 5, 6, 7, 8,
+                                        9, 10, 11, 12, 13, 14, 15};
+  const Status ffv1 = VideoDecoder::Create(VideoCodec::kFfv1, 64, 64, garbage, 1).status();
+  EXPECT_EQ(ffv1.code(), StatusCode::kCorrupt) << ffv1.ToString();
+  EXPECT_NE(ffv1.message().find("ffv1 decoder refuses the 20-byte video configuration"),
+            std::string::npos)
+      << ffv1.ToString();
+  EXPECT_TRUE(VideoDecoder::Create(VideoCodec::kFfv1, 64, 64, {}, 1).ok());
+}
+
+TEST(CodecBadInputTest, HeaderFrameCountIsCheckedAgainstTheGroups) {
+  // HEAD claims 2^31 frames; the index and the groups hold 6. The index is not trusted, the
+  // scan finds the 6 frames and the decoder reports both counts; validation fails.
+  const std::vector<uint8_t> file = testing::WithHeaderFrameCount(GoldenBytes(), 0x80000000u);
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenMemory(file);
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  EXPECT_EQ((*decoder)->info().frame_count, 6u);
+  EXPECT_EQ((*decoder)->info().declared_frame_count, 0x80000000u);
+  EXPECT_FALSE((*decoder)->info().indexed);
+  const ValidationReport report = ValidateContainer(file);
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.errors.back().find("HEAD declares frame_count 2147483648 but the GOFs hold 6"),
+            std::string::npos)
+      << report.ToText();
+  EXPECT_EQ((*decoder)->DecodeFrame(6, 0).status().code(), StatusCode::kInvalidArgument);
 }
 
 }  // namespace

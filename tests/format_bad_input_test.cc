@@ -211,6 +211,69 @@ TEST(FormatBadInputTest, AbsurdCountsWithValidCrcFailWithoutBigAllocations) {
   EXPECT_FALSE(ValidateContainer(file).ok());
 }
 
+TEST(FormatBadInputTest, FrameRateZeroIsCorrupt) {
+  // HEAD frame_rate_numerator = 0 with a resealed CRC: 0 fps used to pass --check.
+  std::vector<uint8_t> file = SmallFile();
+  const size_t numerator_at = kPreambleSize + kChunkHeaderSize;
+  for (int i = 0; i < 4; ++i) file[numerator_at + i] = 0;
+  Reseal(&file, kPreambleSize);
+  EXPECT_EQ(ContainerReader::OpenMemory(file, "z.mvid").status().ToString(),
+            "corrupt: z.mvid: chunk 'HEAD' at offset 8: frame_rate_numerator is 0 (0 fps)");
+  const ValidationReport report = ValidateContainer(file, "z.mvid");
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.errors[0].find("frame_rate_numerator is 0"), std::string::npos);
+  ContainerHeader header;
+  header.frame_rate_numerator = 0;
+  EXPECT_EQ(CheckHeader(header).code(), StatusCode::kInvalidArgument);
+}
+
+TEST(FormatBadInputTest, FrameRangesPastTheLastFrameNumberAreCorrupt) {
+  // A group whose first_frame + frame_count passes 2^32 - 1 (GOF chunk and index entry): the
+  // frame count of the file would wrap a u32.
+  GroupOfFrames gof = Gof(0);
+  gof.first_frame = 5;
+  gof.frame_count = 0xFFFFFFFFu;
+  StatusOr<GroupOfFrames> decoded = DecodeGofPayload(EncodeGofPayload(gof), 1, "g");
+  EXPECT_EQ(decoded.status().ToString(),
+            "corrupt: g: first_frame 5 + frame_count 4294967295 passes the last frame number");
+  gof.first_frame = 0;
+  gof.frame_count = 0xFFFFFFFFu;  // ends exactly at the limit
+  EXPECT_TRUE(DecodeGofPayload(EncodeGofPayload(gof), 1, "g").ok());
+
+  ContainerIndex index;
+  index.key_groups = {{100, 200, 0}};
+  index.gofs = {{300, 0, 4}, {400, 4, 0xFFFFFFFCu}};
+  StatusOr<std::vector<uint8_t>> bytes = EncodeIndexPayload(index, 2);
+  ASSERT_TRUE(bytes.ok());
+  EXPECT_EQ(DecodeIndexPayload(*bytes, 2, "i").status().ToString(),
+            "corrupt: i: entry 1 first_frame 4 + frame_count 4294967292 passes the last frame "
+            "number");
+  index.gofs[1].frame_count = 0xFFFFFFFBu;
+  EXPECT_TRUE(DecodeIndexPayload(*EncodeIndexPayload(index, 2), 2, "i").ok());
+
+  // GOF 2 of a file claims 2^32 - 1 frames (CRC resealed): reading it through the index
+  // fails; with the file cut after it, the forward scan stops before it. The first two groups
+  // stay readable either way.
+  std::vector<uint8_t> file = SmallFile();
+  const ChunkReport gof2_chunk = ValidateContainer(file).chunks[5];
+  const size_t gof2 = gof2_chunk.offset;
+  for (int i = 0; i < 4; ++i) file[gof2 + kChunkHeaderSize + 8 + i] = 0xFF;
+  Reseal(&file, gof2);
+  StatusOr<ContainerReader> indexed = ContainerReader::OpenMemory(file, "w.mvid");
+  ASSERT_TRUE(indexed.ok());
+  EXPECT_NE(indexed->ReadGof(2).status().message().find("passes the last frame number"),
+            std::string::npos);
+  EXPECT_EQ(*indexed->ReadGof(1), Gof(1));
+  file.resize(gof2 + kChunkHeaderSize + gof2_chunk.payload_size + kChunkCrcSize);
+  StatusOr<ContainerReader> reader = ContainerReader::OpenMemory(file, "w.mvid");
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  EXPECT_FALSE(reader->used_index());
+  EXPECT_EQ(reader->frame_count(), 4u);
+  EXPECT_NE(reader->scan_status().message().find("frame_count 4294967295 break the GOF sequence"),
+            std::string::npos)
+      << reader->scan_status().ToString();
+}
+
 TEST(FormatBadInputTest, UnknownChunksAreSkippedOnlyWhenFlagged) {
   std::vector<uint8_t> file = SmallFile();
   const size_t base_at = ValidateContainer(file).chunks[1].offset;

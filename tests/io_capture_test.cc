@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -117,6 +118,22 @@ TEST(CaptureManifestTest, PatternFormExpandsFromFirstFrame) {
   EXPECT_EQ((*capture)->view_path(1, 1), dir.File("f02_v1.obj"));
 }
 
+TEST(CaptureManifestTest, APatternFrameCountBeyondTheFilesFailsBeforeExpanding) {
+  // 10^9 frames of a pattern with two files on disk: refused at once by the missing last
+  // frame, not after expanding a billion paths.
+  TempDir dir;
+  WritePlane(dir.File("f1.obj"), 1);
+  const auto start = std::chrono::steady_clock::now();
+  const auto capture = OpenManifestText(dir, R"({"format": "meshvid-capture", "version": 1,
+      "views": [{}], "pattern": "f{frame}.obj", "frame_count": 1000000000, "first_frame": 1})");
+  ASSERT_FALSE(capture.ok());
+  EXPECT_EQ(capture.status().message(),
+            dir.File("manifest.json") + ": frame_count is 1000000000 but the last frame's view "
+                                        "file " + dir.File("f1000000000.obj") +
+                                        " does not exist");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+}
+
 TEST(CaptureManifestTest, BadFieldsNameTheManifestAndJsonPath) {
   TempDir dir;
   WritePlane(dir.File("a.ply"), 1);
@@ -153,6 +170,9 @@ TEST(CaptureManifestTest, BadFieldsNameTheManifestAndJsonPath) {
            "source)"},
       {head + R"("frame_rate": -1, "views": [{}], "frames": [["a.ply"]]})",
        m + ": frame_rate must be > 0"},
+      // A rate the .mvid writer refuses is refused here, before any file is read.
+      {head + R"("frame_rate": 1e308, "views": [{}], "frames": [["a.ply"]]})",
+       m + ": frame_rate must be at most 1000 (frames per second)"},
       {head + R"("views": [], "frames": [["a.ply"]]})",
        m + ": views must be a non-empty array of view objects"},
       {head + R"("views": [{}]})",

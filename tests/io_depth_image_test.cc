@@ -1,7 +1,9 @@
 // Tests of 16-bit PNG depth images: file round trip, meshing, and capture input.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tests/test_util.h"
@@ -69,6 +71,37 @@ TEST(DepthPngTest, BadFilesAreReportedWithTheirName) {
       << cut.status().message();
   EXPECT_EQ(WriteDepthPng(dir.File("x.png"), DepthImage{3, 3, {1, 2}}).code(),
             StatusCode::kInvalidArgument);
+}
+
+/// PNG's CRC-32 (ISO 3309) of `bytes`.
+std::uint32_t PngCrc(std::string_view bytes) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (const char c : bytes) {
+    crc ^= static_cast<std::uint8_t>(c);
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1)));
+  }
+  return ~crc;
+}
+
+TEST(DepthPngTest, AHeaderClaimingMorePixelsThanTheFileHoldsFailsBeforeAllocating) {
+  // A real 40 x 30 image whose IHDR now says 1000000 x 1000000 (2 TB of 16-bit samples),
+  // its CRC recomputed: refused from the file size, not by a failed allocation.
+  TempDir dir;
+  ASSERT_TRUE(WriteDepthPng(dir.File("d.png"), TwoLevelImage(1, 2, 5)).ok());
+  std::string png = testing::ReadFile(dir.File("d.png"));
+  ASSERT_EQ(png.substr(12, 4), "IHDR");
+  for (const int at : {16, 20}) {  // width, height: big-endian u32
+    const std::uint32_t million = 1000000;
+    for (int i = 0; i < 4; ++i) png[at + i] = static_cast<char>(million >> (24 - 8 * i));
+  }
+  const std::uint32_t crc = PngCrc(std::string_view(png).substr(12, 17));
+  for (int i = 0; i < 4; ++i) png[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+  WriteFile(dir.File("huge.png"), png);
+  const auto huge = ReadDepthPng(dir.File("huge.png"));
+  EXPECT_EQ(huge.status().ToString(),
+            "corrupt: " + dir.File("huge.png") + ": a 1000000 x 1000000 image needs " +
+                "2000000000000 bytes, more than the " + std::to_string(png.size()) +
+                "-byte file can hold (damaged header?)");
 }
 
 TEST(DepthMeshTest, PlaneThroughCaptureHasExactSizeAndDepth) {

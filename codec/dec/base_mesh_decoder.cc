@@ -1,5 +1,6 @@
 #include "codec/dec/base_mesh_decoder.h"
 
+#include <array>
 #include <string>
 
 #include <draco/compression/decode.h>
@@ -20,14 +21,18 @@ StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes) {
   const std::unique_ptr<draco::Mesh> draco_mesh = std::move(decoded).value();
   const draco::PointAttribute* position =
       draco_mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
-  if (position == nullptr || position->num_components() != 3) {
-    return CorruptError("base mesh: no 3-component position attribute");
+  // Draco decodes positions (quantised or not) to 32-bit floats. They are copied as such:
+  // Draco's ConvertValue reads the attribute's `normalized` flag, a bool Draco fills from a
+  // byte of the stream (any value: undefined behaviour in its header, found by fuzzing).
+  if (position == nullptr || position->num_components() != 3 ||
+      position->data_type() != draco::DT_FLOAT32 || position->byte_stride() != 12) {
+    return CorruptError("base mesh: no position attribute of 3 32-bit floats");
   }
   TriangleMesh mesh;
   mesh.positions.resize(draco_mesh->num_points());
   for (draco::PointIndex i(0); i < draco_mesh->num_points(); ++i) {
-    float xyz[3];
-    if (!position->ConvertValue<float, 3>(position->mapped_index(i), xyz)) {
+    std::array<float, 3> xyz;  // GetValue checks the read against the attribute's buffer
+    if (!position->GetValue<float, 3>(position->mapped_index(i), &xyz)) {
       return CorruptError("base mesh: unreadable position of point " +
                           std::to_string(i.value()));
     }

@@ -73,22 +73,23 @@ class MvidDecoder::IndexedGroups : public GroupSource {
   }
   StatusOr<KeyGroupBytes> ReadKeyGroup(std::size_t k) override {
     KeyGroupBytes bytes;
-    const std::string cut = reader_.used_index() || reader_.scan_status().ok()
-                                ? ""
-                                : " (" + reader_.scan_status().message() + ")";
-    auto read = [&](StatusOr<std::vector<std::uint8_t>> payload,
+    const bool cut = !reader_.used_index() && !reader_.scan_status().ok();
+    auto read = [&](StatusOr<std::vector<std::uint8_t>> payload, const char* type,
                     std::vector<std::uint8_t>* out) -> Status {
       if (!payload.ok()) {
-        // A cut file's scan says where it stopped, which explains a missing chunk.
-        return payload.status().code() == StatusCode::kNotFound && !cut.empty()
-                   ? CorruptError(payload.status().message() + cut)
+        // A cut file's scan says where it stopped, which explains a missing chunk: the chunk
+        // may well be there, cut or damaged, so do not say the file has none.
+        return payload.status().code() == StatusCode::kNotFound && cut
+                   ? CorruptError(reader_.source().name() + ": key group " + std::to_string(k) +
+                                  "'s " + type + " chunk is cut or damaged (the chunk scan " +
+                                  "stopped: " + reader_.scan_status().message() + ")")
                    : payload.status();
       }
       *out = std::move(*payload);
       return Status::Ok();
     };
-    MESHVID_RETURN_IF_ERROR(read(reader_.ReadBase(k), &bytes.base));
-    MESHVID_RETURN_IF_ERROR(read(reader_.ReadMotion(k), &bytes.motion));
+    MESHVID_RETURN_IF_ERROR(read(reader_.ReadBase(k), "BASE", &bytes.base));
+    MESHVID_RETURN_IF_ERROR(read(reader_.ReadMotion(k), "MOTN", &bytes.motion));
     return bytes;
   }
   ContainerReader* reader() override { return &reader_; }
@@ -230,6 +231,7 @@ Status MvidDecoder::ReadHeader(const ContainerHeader& header, const std::string&
   }
   info.codec = *codec;
   info.frame_rate = double(header.frame_rate_numerator) / header.frame_rate_denominator;
+  info.declared_frame_count = header.frame_count;
   info.gof_size = header.gof_size;
   info.levels = static_cast<int>(header.level_count);
   info.picture_width = static_cast<int>(header.streams[0].width);
@@ -402,15 +404,20 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   group->index = k;
   group->key_group = read.second;
   group->first_frame = gof.first_frame;
-  MESHVID_ASSIGN_OR_RETURN(group->side,
-                           DecodeGofSideInfo(gof.transforms, gof.frame_count,
-                                             key_group_->motion.segment_count,
-                                             key_group_->quantization));
-  MESHVID_ASSIGN_OR_RETURN(group->layout, LayoutFor(group->side.packing));
-  MESHVID_ASSIGN_OR_RETURN(
-      std::unique_ptr<VideoDecoder> video,
+  // Every error of the payload decoders below names the file and the group.
+  StatusOr<GofSideInfo> side = DecodeGofSideInfo(gof.transforms, gof.frame_count,
+                                                 key_group_->motion.segment_count,
+                                                 key_group_->quantization);
+  if (!side.ok()) return side.status().WithContext(context);
+  group->side = std::move(*side);
+  StatusOr<const DisplacementLayout*> layout = LayoutFor(group->side.packing);
+  if (!layout.ok()) return layout.status().WithContext(context);
+  group->layout = *layout;
+  StatusOr<std::unique_ptr<VideoDecoder>> created =
       VideoDecoder::Create(info_.codec, group->layout->width(), group->layout->height(),
-                           group->side.video_config, options_.threads));
+                           group->side.video_config, options_.threads);
+  if (!created.ok()) return created.status().WithContext(context);
+  std::unique_ptr<VideoDecoder> video = std::move(*created);
   VideoPacket packet;
   for (std::size_t p = 0; p < gof.packets[0].size(); ++p) {
     packet.data = gof.packets[0][p];

@@ -48,6 +48,8 @@ struct MvidKeyGroupInfo {
 struct MvidInfo {
   double frame_rate = 0;
   std::uint32_t frame_count = 0;  ///< frames readable (all, or those before a cut)
+  /// HEAD's frame_count (0: unknown); differs from frame_count when the file is cut or damaged.
+  std::uint32_t declared_frame_count = 0;
   std::uint32_t gof_size = 0;
   std::uint32_t gof_count = 0;
   int levels = 0;

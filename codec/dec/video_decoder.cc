@@ -69,6 +69,12 @@ StatusOr<std::unique_ptr<VideoDecoder>> VideoDecoder::Create(
     impl.context->extradata_size = static_cast<int>(extradata.size());
   }
   const int error = avcodec_open2(impl.context.get(), decoder, nullptr);
+  // The configuration comes from the file: a decoder that refuses it means damaged data.
+  if (error < 0 && (!extradata.empty() || error == AVERROR_INVALIDDATA)) {
+    return CorruptError("the " + std::string(VideoCodecName(codec)) + " decoder refuses the " +
+                        std::to_string(extradata.size()) + "-byte video configuration: " +
+                        FfmpegErrorText(error));
+  }
   if (error < 0) return FfmpegError("cannot open the video decoder", error);
   return result;
 }

@@ -59,6 +59,12 @@ int RunInfo(const InfoArguments& args) {
     if (!described.ok()) return ReportError(described.status());
     key_groups.push_back(*std::move(described));
   }
+  if (info.declared_frame_count != 0 && info.declared_frame_count != info.frame_count) {
+    std::fprintf(stderr,
+                 "meshvid: warning: %s: its header declares %u frames but its groups hold %u "
+                 "readable frames (the file is cut or damaged; info --check tells more)\n",
+                 args.file.c_str(), info.declared_frame_count, info.frame_count);
+  }
   const double frames = std::max<double>(1, info.frame_count);
   const double bytes_per_frame = info.file_bytes / frames;
   const double mbits = bytes_per_frame * 8 * info.frame_rate / 1e6;

@@ -1,5 +1,7 @@
 #include "tools/eval/eval_source.h"
 
+#include <limits>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -62,6 +64,13 @@ StatusOr<std::unique_ptr<MvidSequence>> MvidSequence::Open(const std::string& pa
   std::unique_ptr<MvidSequence> sequence(new MvidSequence());
   sequence->path_ = path;
   MESHVID_ASSIGN_OR_RETURN(sequence->decoder_, MvidDecoder::OpenFile(path));
+  // MeshSequence counts frames in an int; a larger count (a damaged or hostile file) is
+  // refused rather than wrapped negative.
+  const std::uint32_t frames = sequence->decoder_->info().frame_count;
+  if (frames > static_cast<std::uint32_t>(std::numeric_limits<int>::max())) {
+    return UnsupportedError(path + ": " + std::to_string(frames) + " frames; eval reads at most " +
+                            std::to_string(std::numeric_limits<int>::max()));
+  }
   const int levels = sequence->decoder_->info().levels;
   sequence->level_ = level < 0 ? levels : level;
   if (sequence->level_ > levels) {

@@ -1,5 +1,6 @@
 // The capture manifest (manifest.json, spec/capture-manifest.md): reading and writing.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iomanip>
@@ -20,6 +21,8 @@ using Json = nlohmann::json;
 
 constexpr char kFormatName[] = "meshvid-capture";
 constexpr int kFormatVersion = 1;
+/// The highest frame_rate a manifest may state: the .mvid writer's limit (frames per second).
+constexpr double kMaxFrameRate = 1000;
 
 /// Shortest decimal text that reads back as the same float.
 std::string FloatText(float value) {
@@ -207,6 +210,17 @@ class ManifestReader {
       }
       first_frame = value.get<int>();
     }
+    // The count comes from the file: before expanding it into paths (up to 10^9 frames),
+    // the last frame's files must exist, so the paths are justified by what is on disk.
+    for (int v = 0; v < view_count; ++v) {
+      const std::string last = pattern->Expand(first_frame + frame_count - 1, v);
+      std::error_code error;
+      if (!std::filesystem::exists(last, error)) {
+        return Error("frame_count", "is " + std::to_string(frame_count) +
+                                        " but the last frame's view file " + last +
+                                        " does not exist");
+      }
+    }
     for (int f = 0; f < frame_count; ++f) {
       std::vector<std::string> row;
       for (int v = 0; v < view_count; ++v) row.push_back(pattern->Expand(first_frame + f, v));
@@ -237,6 +251,10 @@ class ManifestReader {
     }
     CaptureInfo info;
     MESHVID_ASSIGN_OR_RETURN(info.frame_rate, Number(root, "frame_rate", "frame_rate", true, 25.0));
+    if (info.frame_rate > kMaxFrameRate) {
+      return Error("frame_rate", "must be at most " + std::to_string(int(kMaxFrameRate)) +
+                                     " (frames per second)");
+    }
     if (root.contains("units")) {
       if (!root["units"].is_string()) return Error("units", "must be a string");
       info.units = root["units"].get<std::string>();

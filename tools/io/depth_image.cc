@@ -13,6 +13,9 @@
 namespace meshvid {
 namespace {
 
+/// Deflate (PNG's compression) expands at most 1032-fold; rounded up for the filter bytes.
+constexpr std::uint64_t kMaxDeflateExpansion = 1100;
+
 /// Closes a FILE* on scope exit.
 struct FileCloser {
   void operator()(std::FILE* file) const {
@@ -82,6 +85,14 @@ StatusOr<DepthImage> ReadDepthPng(const std::string& path) {
   if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
     return CorruptError(path + ": not a PNG file");
   }
+  // The file's size bounds the pixels it can hold (checked before they are allocated).
+  // volatile: it lives across libpng's setjmp.
+  const volatile std::uint64_t file_size = [&]() -> std::uint64_t {
+    if (std::fseek(file.get(), 0, SEEK_END) != 0) return 0;
+    const long end = std::ftell(file.get());
+    return end > 0 ? static_cast<std::uint64_t>(end) : 0;
+  }();
+  if (std::fseek(file.get(), 8, SEEK_SET) != 0) return IoError(path + ": cannot seek");
   std::string error;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, PngError, PngWarning);
   if (png == nullptr) return InternalError(path + ": libpng could not start");
@@ -115,6 +126,15 @@ StatusOr<DepthImage> ReadDepthPng(const std::string& path) {
   image.width = static_cast<int>(png_get_image_width(png, info));
   image.height = static_cast<int>(png_get_image_height(png, info));
   const std::size_t row_bytes = png_get_rowbytes(png, info);
+  const std::uint64_t pixel_bytes = std::uint64_t{row_bytes} * image.height;
+  if (pixel_bytes / kMaxDeflateExpansion > file_size) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return CorruptError(path + ": a " + std::to_string(image.width) + " x " +
+                        std::to_string(image.height) + " image needs " +
+                        std::to_string(pixel_bytes) + " bytes, more than the " +
+                        std::to_string(std::uint64_t{file_size}) +
+                        "-byte file can hold (damaged header?)");
+  }
   pixels.resize(row_bytes * image.height);
   rows.resize(image.height);
   for (int v = 0; v < image.height; ++v) rows[v] = pixels.data() + row_bytes * v;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/samba_frames.h"
 #include "codec/enc/surface_fusion.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/sim/range_sensor.h"
@@ -31,31 +32,13 @@ struct SambaViews {
   std::vector<std::vector<TriangleMesh>> frames;
 
   SambaViews() {
-    const char* env = std::getenv("MESHVID_SHARED_DATA");
-    const std::string data = env != nullptr ? env : MESHVID_DEFAULT_SHARED_DATA;
-    const std::string path = data + "/sequences/samba.obj";
-    if (!std::filesystem::exists(path)) {
-      error = "shared data absent (" + path + "); set MESHVID_SHARED_DATA";
+    SambaGroundTruth truth = LoadSambaGroundTruth(kFrames);
+    if (!truth.error.empty()) {
+      error = std::move(truth.error);
       return;
     }
-    auto sequence = OpenMeshSequence(path);
-    if (!sequence.ok()) {
-      error = sequence.status().ToString();
-      return;
-    }
-    std::vector<TriangleMesh> truth;
-    Eigen::AlignedBox3d box;
-    for (int t = 0; t < kFrames; ++t) {
-      auto mesh = (*sequence)->Frame(t);
-      if (!mesh.ok()) {
-        error = mesh.status().ToString();
-        return;
-      }
-      const Eigen::AlignedBox3f b = BoundingBox(*mesh);
-      box.extend(b.min().cast<double>());
-      box.extend(b.max().cast<double>());
-      truth.push_back(std::move(*mesh));
-    }
+    const Eigen::AlignedBox3d box(truth.bounds.min().cast<double>(),
+                                  truth.bounds.max().cast<double>());
     RigOptions rig;
     rig.azimuth_deg = 90;  // samba's dancer faces +x
     auto cameras = PlaceCameras(box, rig);
@@ -69,7 +52,7 @@ struct SambaViews {
       return;
     }
     for (int t = 0; t < kFrames; ++t) {
-      auto views = (*simulator)->SimulateFrame(truth[t], t);
+      auto views = (*simulator)->SimulateFrame(truth.frames[t], t);
       if (!views.ok()) {
         error = views.status().ToString();
         return;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/samba_frames.h"
 #include "tools/eval/surface_distance.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/render/camera.h"
@@ -30,29 +31,10 @@ struct SambaFrames {
   RenderCamera camera;
 
   SambaFrames() {
-    const char* env = std::getenv("MESHVID_SHARED_DATA");
-    const std::string data = env != nullptr ? env : MESHVID_DEFAULT_SHARED_DATA;
-    const std::string path = data + "/sequences/samba.obj";
-    if (!std::filesystem::exists(path)) {
-      error = "shared data absent (" + path + "); set MESHVID_SHARED_DATA";
-      return;
-    }
-    auto sequence = OpenMeshSequence(path);
-    if (!sequence.ok()) {
-      error = sequence.status().ToString();
-      return;
-    }
-    Eigen::AlignedBox3f bounds;
-    for (int t = 0; t < kFrames; ++t) {
-      auto mesh = (*sequence)->Frame(t);
-      if (!mesh.ok()) {
-        error = mesh.status().ToString();
-        return;
-      }
-      bounds.extend(BoundingBox(*mesh));
-      frames.push_back(std::move(*mesh));
-    }
-    camera = FrameBounds(bounds, OrbitSpec{}, 640, 480);
+    SambaGroundTruth truth = LoadSambaGroundTruth(kFrames);
+    error = std::move(truth.error);
+    frames = std::move(truth.frames);
+    if (error.empty()) camera = FrameBounds(truth.bounds, OrbitSpec{}, 640, 480);
   }
 };
 

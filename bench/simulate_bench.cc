@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/samba_frames.h"
 #include "tools/io/mesh_io.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/sim/range_sensor.h"
@@ -37,30 +38,14 @@ struct SambaFixture {
   std::vector<ViewCalibration> views;
 
   SambaFixture() {
-    const char* env = std::getenv("MESHVID_SHARED_DATA");
-    const std::string data = env != nullptr ? env : MESHVID_DEFAULT_SHARED_DATA;
-    const std::string path = data + "/sequences/samba.obj";
-    if (!std::filesystem::exists(path)) {
-      error = "shared data absent (" + path + "); set MESHVID_SHARED_DATA";
+    SambaGroundTruth truth = LoadSambaGroundTruth(kFrames);
+    if (!truth.error.empty()) {
+      error = std::move(truth.error);
       return;
     }
-    auto sequence = OpenMeshSequence(path);
-    if (!sequence.ok()) {
-      error = sequence.status().ToString();
-      return;
-    }
-    Eigen::AlignedBox3d box;
-    for (int t = 0; t < kFrames; ++t) {
-      auto mesh = (*sequence)->Frame(t);
-      if (!mesh.ok()) {
-        error = mesh.status().ToString();
-        return;
-      }
-      const Eigen::AlignedBox3f b = BoundingBox(*mesh);
-      box.extend(b.min().cast<double>());
-      box.extend(b.max().cast<double>());
-      frames.push_back(std::move(*mesh));
-    }
+    frames = std::move(truth.frames);
+    const Eigen::AlignedBox3d box(truth.bounds.min().cast<double>(),
+                                  truth.bounds.max().cast<double>());
     auto placed = PlaceCameras(box, RigOptions());
     if (!placed.ok()) error = placed.status().ToString();
     else views = *placed;

@@ -3,9 +3,7 @@
 // the area of the cloth the views saw (no invented closing sheet behind it).
 #include <gtest/gtest.h>
 
-#include <map>
 #include <string>
-#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -15,16 +13,6 @@
 
 namespace meshvid {
 namespace {
-
-std::size_t BoundaryEdgeCount(const TriangleMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const Triangle& t : mesh.triangles) {
-    for (int c = 0; c < 3; ++c) ++uses[std::minmax(t[c], t[(c + 1) % 3])];
-  }
-  std::size_t boundary = 0;
-  for (const auto& [edge, count] : uses) boundary += count == 1;
-  return boundary;
-}
 
 TEST(ClothEncodeTest, DecodesAsASheetOfTheSeenArea) {
   MESHVID_REQUIRE_CLI();
@@ -50,7 +38,8 @@ TEST(ClothEncodeTest, DecodesAsASheetOfTheSeenArea) {
   for (int frame = 0; frame < 4; ++frame) {
     auto decoded = (*decoder)->DecodeFrame(frame, (*decoder)->info().levels);
     ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
-    EXPECT_GT(BoundaryEdgeCount(*decoded), 50u) << "frame " << frame << " is not a sheet";
+    EXPECT_GT(testing::BoundaryEdgeCount(*decoded), 50u)
+        << "frame " << frame << " is not a sheet";
     auto truth_frame = (*truth)->Frame(frame);
     ASSERT_TRUE(truth_frame.ok()) << truth_frame.status().ToString();
     // The seen area: the share of the truth's samples near some view, times its area.

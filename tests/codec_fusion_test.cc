@@ -268,15 +268,6 @@ TriangleMesh MakeSphereRangeView(const Vector3f& sensor, float radius, int n, fl
   return mesh;
 }
 
-// Count of edges used by one triangle only (the surface's boundary).
-std::size_t BoundaryEdgeCount(const TriangleMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const Triangle& t : mesh.triangles) {
-    for (int c = 0; c < 3; ++c) ++uses[std::minmax(t[c], t[(c + 1) % 3])];
-  }
-  return std::count_if(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; });
-}
-
 // Views of a sphere of radius `radius` from sensors at distance 0.7 along `directions`.
 std::vector<TriangleMesh> SphereViews(const std::vector<Vector3f>& directions, float radius,
                                       float noise) {
@@ -335,7 +326,7 @@ TEST(FuseRangeMeshesTest, HalfSeenSphereStaysOpenWhereNoViewLooks) {
   const std::vector<TriangleMesh> views = SphereViews(directions, kRadius, 0.0005f);
   auto fused = FuseRangeMeshes(views);
   ASSERT_TRUE(fused.ok()) << fused.status().ToString();
-  EXPECT_GT(BoundaryEdgeCount(*fused), 20u);
+  EXPECT_GT(testing::BoundaryEdgeCount(*fused), 20u);
   for (const Vector3f& p : fused->positions) {
     EXPECT_NEAR(p.norm(), kRadius, 0.002f) << p.transpose();
     // Seen by some view: at most a few degrees past a view's horizon.
@@ -350,7 +341,7 @@ TEST(FuseRangeMeshesTest, OpenPlaneStaysOpenWithItsBoundary) {
   std::vector<TriangleMesh> views = {testing::MakeGridPlane(0.4f, 100)};
   auto fused = FuseRangeMeshes(views);
   ASSERT_TRUE(fused.ok()) << fused.status().ToString();
-  EXPECT_GT(BoundaryEdgeCount(*fused), 100u);
+  EXPECT_GT(testing::BoundaryEdgeCount(*fused), 100u);
   EXPECT_NEAR(SurfaceArea(*fused), 0.16, 0.16 * 0.05);
   const Eigen::AlignedBox3f box = BoundingBox(*fused);
   EXPECT_LT(box.sizes().z(), 1e-4f);
@@ -396,7 +387,7 @@ TEST(FuseRangeMeshesTest, SheetSeenFromBothSidesFusesAsOneOpenSheet) {
   const std::vector<TriangleMesh> views = {above, below};
   auto fused = FuseRangeMeshes(views);
   ASSERT_TRUE(fused.ok()) << fused.status().ToString();
-  EXPECT_GT(BoundaryEdgeCount(*fused), 100u);
+  EXPECT_GT(testing::BoundaryEdgeCount(*fused), 100u);
   EXPECT_NEAR(SurfaceArea(*fused), 0.16, 0.16 * 0.05);  // one sheet, not two
   for (const Vector3f& p : fused->positions) EXPECT_LT(std::abs(p.z()), 0.001f) << p.transpose();
 }

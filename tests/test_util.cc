@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace meshvid::testing {
@@ -57,6 +58,16 @@ CliRun RunMeshvid(const std::string& arguments, const TempDir& dir) {
   run.out = ReadFile(out);
   run.err = ReadFile(err);
   return run;
+}
+
+std::size_t BoundaryEdgeCount(const TriangleMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const Triangle& t : mesh.triangles) {
+    for (int c = 0; c < 3; ++c) ++uses[std::minmax(t[c], t[(c + 1) % 3])];
+  }
+  std::size_t boundary = 0;
+  for (const auto& [edge, count] : uses) boundary += count == 1;
+  return boundary;
 }
 
 TriangleMesh MakeGridPlane(float size, int n, float z) {

@@ -49,6 +49,9 @@ CliRun RunMeshvid(const std::string& arguments, const TempDir& dir);
 /// origin, normals along +z.
 TriangleMesh MakeGridPlane(float size, int n, float z = 0.0f);
 
+/// Edges used by one triangle only: the length of the surface's boundary, in edges.
+std::size_t BoundaryEdgeCount(const TriangleMesh& mesh);
+
 }  // namespace meshvid::testing
 
 /// Skips the current test with a message when the shared data folder is absent; otherwise

@@ -177,20 +177,14 @@ bool DistanceVolume::CubeDistances(const VoxelIndex& v, float distances[8]) cons
     const Voxel* voxel =
         inside_one_block ? base + (offset.z() * kBlockSide + offset.y()) * kBlockSide + offset.x()
                          : Find(v + offset);
-    if (voxel == nullptr || !(voxel->weight > 0) || voxel->support > settings_.support_voxels) {
-      return false;
-    }
-    distances[c] = settings_.voxel_size * voxel->weighted_distance / voxel->weight;
+    if (voxel == nullptr || !Distance(*voxel, &distances[c])) return false;
   }
   return true;
 }
 
-bool DistanceVolume::SupportedDistance(const VoxelIndex& v, float* distance) const {
-  const Voxel* voxel = Find(v);
-  if (voxel == nullptr || !(voxel->weight > 0) || voxel->support > settings_.support_voxels) {
-    return false;
-  }
-  *distance = settings_.voxel_size * voxel->weighted_distance / voxel->weight;
+bool DistanceVolume::Distance(const Voxel& voxel, float* distance) const {
+  if (!(voxel.weight > 0) || voxel.support > settings_.support_voxels) return false;
+  *distance = settings_.voxel_size * voxel.weighted_distance / voxel.weight;
   return true;
 }
 

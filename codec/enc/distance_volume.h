@@ -48,9 +48,6 @@ class DistanceVolume {
   /// on the number of threads).
   void Integrate(std::span<const OrientedPoint> points);
 
-  /// The signed distance at voxel `v` if the data supports it there.
-  bool SupportedDistance(const VoxelIndex& v, float* distance) const;
-
   /// The signed distances at the 8 corners of the cube whose lowest corner is voxel `v`,
   /// corner c at v + (c & 1, c >> 1 & 1, c >> 2 & 1); false unless all 8 are supported.
   bool CubeDistances(const VoxelIndex& v, float distances[8]) const;
@@ -80,6 +77,8 @@ class DistanceVolume {
     Voxel voxels[kBlockVoxels];
   };
   static std::uint64_t BlockKey(const VoxelIndex& block);
+  /// The voxel's signed distance, if points wrote it and one lies within the support.
+  bool Distance(const Voxel& voxel, float* distance) const;
   const Voxel* Find(const VoxelIndex& v) const;
   Voxel* FindOrAdd(const VoxelIndex& v);
 

@@ -1,5 +1,6 @@
 #include "codec/enc/base_mesh_encoder.h"
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <string>
@@ -63,32 +64,73 @@ Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings)
   return Status::Ok();
 }
 
-/// Finds where Draco put every input vertex and triangle: each input vertex must have exactly
-/// one decoded vertex within a quantisation step, and the triangles must be the same up to
-/// order and rotation. False (nothing filled) otherwise.
+/// Where Draco put each input vertex: the one decoded vertex within a quantisation step.
+/// Vertices that share a position with others (a contour's coincident vertices) have several
+/// candidates; they are told apart by the triangles around them: an input triangle whose
+/// other two corners are placed names the decoded triangle, and so its third corner. False
+/// when some vertex stays unplaced.
+bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int position_bits,
+                   std::vector<std::uint32_t>* vertex_in_decoded) {
+  constexpr std::uint32_t kUnplaced = ~0u;
+  const PointCloud cloud{decoded.positions};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
+  vertex_in_decoded->assign(mesh.vertex_count(), kUnplaced);
+  std::vector<char> taken(decoded.vertex_count(), 0);
+  std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;  // of the ambiguous ones
+  std::vector<std::pair<std::uint32_t, float>> near;  // (index, squared distance)
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    near.clear();
+    tree.radiusSearch(mesh.positions[v].data(), step * step, near, nanoflann::SearchParams());
+    if (near.empty()) return false;
+    if (near.size() == 1) {
+      if (taken[near[0].first]) return false;
+      taken[near[0].first] = 1;
+      (*vertex_in_decoded)[v] = near[0].first;
+      continue;
+    }
+    auto& list = candidates[static_cast<std::uint32_t>(v)];
+    for (const auto& item : near) list.push_back(item.first);
+  }
+  if (candidates.empty()) return true;
+  // Decoded directed edge -> the third corner of its triangle.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> third;
+  for (const Triangle& tri : decoded.triangles) {
+    for (int c = 0; c < 3; ++c) third[{tri[c], tri[(c + 1) % 3]}] = tri[(c + 2) % 3];
+  }
+  for (bool progress = true; progress && !candidates.empty();) {
+    progress = false;
+    for (const Triangle& tri : mesh.triangles) {
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t v = tri[(c + 2) % 3];
+        const std::uint32_t a = (*vertex_in_decoded)[tri[c]];
+        const std::uint32_t b = (*vertex_in_decoded)[tri[(c + 1) % 3]];
+        if ((*vertex_in_decoded)[v] != kUnplaced || a == kUnplaced || b == kUnplaced) continue;
+        const auto edge = third.find({a, b});
+        if (edge == third.end()) return false;
+        const std::vector<std::uint32_t>& list = candidates.at(v);
+        const std::uint32_t w = edge->second;
+        if (taken[w] || std::find(list.begin(), list.end(), w) == list.end()) return false;
+        taken[w] = 1;
+        (*vertex_in_decoded)[v] = w;
+        candidates.erase(v);
+        progress = true;
+      }
+    }
+  }
+  return candidates.empty();
+}
+
+/// Finds where Draco put every input vertex and triangle (MatchVertices), and checks that the
+/// triangles are the same up to order and rotation. False (nothing filled) otherwise.
 bool MatchDecodedOrder(const TriangleMesh& mesh, int position_bits, EncodedBaseMesh* coded) {
   const TriangleMesh& decoded = coded->decoded;
   if (decoded.vertex_count() != mesh.vertex_count() ||
       decoded.triangle_count() != mesh.triangle_count()) {
     return false;
   }
-  const PointCloud cloud{decoded.positions};
-  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
-  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
-  std::vector<std::uint32_t> vertex_in_decoded(mesh.vertex_count());
-  std::vector<char> taken(decoded.vertex_count(), 0);
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    std::uint32_t nearest[2] = {0, 0};
-    float squared[2] = {0, 0};
-    const std::size_t found = tree.knnSearch(mesh.positions[v].data(), 2, nearest, squared);
-    // The nearest within a step, and no second candidate as close: unambiguous.
-    if (found == 0 || squared[0] > step * step || (found == 2 && squared[1] <= step * step) ||
-        taken[nearest[0]]) {
-      return false;
-    }
-    taken[nearest[0]] = 1;
-    vertex_in_decoded[v] = nearest[0];
-  }
+  std::vector<std::uint32_t> vertex_in_decoded;
+  if (!MatchVertices(mesh, decoded, position_bits, &vertex_in_decoded)) return false;
   // Triangles as rotated to start at their smallest decoded vertex.
   auto key = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     if (b < a && b < c) return std::array<std::uint32_t, 3>{b, c, a};

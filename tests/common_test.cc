@@ -63,5 +63,34 @@ TEST(MeshTest, RemoveUnreferencedVerticesRenumbers) {
   EXPECT_EQ(mesh.positions[0], Eigen::Vector3f(0, 0, 0));
 }
 
+TEST(MeshTest, SplitNonManifoldVerticesGivesEachFanItsVertex) {
+  // Two fans of two triangles each meet at vertex 0 only (a bow tie of quads).
+  TriangleMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                    {-1, 0, 0}, {-1, -1, 0}, {0, -1, 0}};
+  mesh.triangles = {Triangle(0, 1, 2), Triangle(0, 2, 3), Triangle(0, 4, 5), Triangle(0, 5, 6)};
+  const double area = SurfaceArea(mesh);
+  EXPECT_EQ(SplitNonManifoldVertices(&mesh), 1u);
+  ASSERT_EQ(mesh.vertex_count(), 8u);
+  EXPECT_EQ(mesh.positions[7], mesh.positions[0]);
+  // The first fan keeps vertex 0; the second uses the copy throughout.
+  EXPECT_EQ(mesh.triangles[0][0], 0u);
+  EXPECT_EQ(mesh.triangles[1][0], 0u);
+  EXPECT_EQ(mesh.triangles[2][0], 7u);
+  EXPECT_EQ(mesh.triangles[3][0], 7u);
+  EXPECT_DOUBLE_EQ(SurfaceArea(mesh), area);
+  // A manifold mesh (a closed octahedron, an open grid) is left alone.
+  TriangleMesh octahedron;
+  octahedron.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octahedron.triangles = {Triangle(0, 2, 4), Triangle(2, 1, 4), Triangle(1, 3, 4),
+                          Triangle(3, 0, 4), Triangle(2, 0, 5), Triangle(1, 2, 5),
+                          Triangle(3, 1, 5), Triangle(0, 3, 5)};
+  const TriangleMesh before = octahedron;
+  EXPECT_EQ(SplitNonManifoldVertices(&octahedron), 0u);
+  EXPECT_EQ(octahedron.triangles, before.triangles);
+  TriangleMesh grid = testing::MakeGridPlane(1.0f, 6);
+  EXPECT_EQ(SplitNonManifoldVertices(&grid), 0u);
+}
+
 }  // namespace
 }  // namespace meshvid

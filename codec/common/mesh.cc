@@ -1,7 +1,10 @@
 #include "codec/common/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace meshvid {
 
@@ -127,6 +130,64 @@ void RemoveUnreferencedVertices(TriangleMesh* mesh) {
   }
   mesh->positions = std::move(positions);
   mesh->normals = std::move(normals);
+}
+
+std::size_t SplitNonManifoldVertices(TriangleMesh* mesh) {
+  // Corners of each vertex: (triangle, corner) pairs.
+  const std::size_t vertex_count = mesh->positions.size();
+  std::vector<std::uint32_t> offsets(vertex_count + 1, 0);
+  for (const Triangle& tri : mesh->triangles) {
+    for (int c = 0; c < 3; ++c) ++offsets[tri[c] + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
+  std::vector<std::uint32_t> corners(offsets.back()), fill(offsets.begin(), offsets.end() - 1);
+  for (std::uint32_t t = 0; t < mesh->triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) corners[fill[mesh->triangles[t][c]]++] = 3 * t + c;
+  }
+  std::size_t added = 0;
+  std::vector<std::uint32_t> fan;  // per corner of the vertex: its fan (union-find parent)
+  for (std::uint32_t v = 0; v < vertex_count; ++v) {
+    const std::uint32_t begin = offsets[v], count = offsets[v + 1] - begin;
+    if (count < 2) continue;
+    fan.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) fan[i] = i;
+    auto root = [&](std::uint32_t i) {
+      while (fan[i] != i) i = fan[i] = fan[fan[i]];
+      return i;
+    };
+    // Two corners of v are in one fan when their triangles share an edge at v.
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const Triangle& a = mesh->triangles[corners[begin + i] / 3];
+      const int ca = corners[begin + i] % 3;
+      for (std::uint32_t j = i + 1; j < count; ++j) {
+        const Triangle& b = mesh->triangles[corners[begin + j] / 3];
+        const int cb = corners[begin + j] % 3;
+        const bool shared = a[(ca + 1) % 3] == b[(cb + 1) % 3] || a[(ca + 1) % 3] == b[(cb + 2) % 3] ||
+                            a[(ca + 2) % 3] == b[(cb + 1) % 3] || a[(ca + 2) % 3] == b[(cb + 2) % 3];
+        if (shared) fan[root(i)] = root(j);
+      }
+    }
+    // Fans after the first one met get a copy of the vertex.
+    const std::uint32_t first_fan = root(0);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;  // (fan root, new vertex)
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t r = root(i);
+      if (r == first_fan) continue;
+      std::uint32_t copy = 0;
+      auto it = std::find_if(copies.begin(), copies.end(), [r](const auto& p) { return p.first == r; });
+      if (it == copies.end()) {
+        copy = static_cast<std::uint32_t>(mesh->positions.size());
+        mesh->positions.push_back(mesh->positions[v]);
+        if (!mesh->normals.empty()) mesh->normals.push_back(mesh->normals[v]);
+        copies.emplace_back(r, copy);
+        ++added;
+      } else {
+        copy = it->second;
+      }
+      mesh->triangles[corners[begin + i] / 3][corners[begin + i] % 3] = copy;
+    }
+  }
+  return added;
 }
 
 }  // namespace meshvid

@@ -61,6 +61,13 @@ void TransformMesh(const Eigen::Affine3d& transform, TriangleMesh* mesh);
 /// Removes vertices no triangle references, renumbering the triangles.
 void RemoveUnreferencedVertices(TriangleMesh* mesh);
 
+/// Gives each fan of triangles around a vertex its own vertex: where two or more fans touch
+/// at one vertex only (a contour's sheets meeting at a grid point), all but the first get a
+/// copy of it, appended (normals copied too). Edges are left as they are. Mesh coders (Draco's
+/// edgebreaker) split such vertices themselves, which breaks a vertex-indexed mapping.
+/// Returns the number of vertices added.
+std::size_t SplitNonManifoldVertices(TriangleMesh* mesh);
+
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_COMMON_MESH_H_

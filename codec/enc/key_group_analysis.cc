@@ -91,8 +91,13 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   decimation.target_vertices = options.base_vertices;
   decimation.max_error = ctx.lengths.base_max_error;
   decimation.max_normal_deviation_degrees = options.tuning.base_max_normal_deviation_degrees;
-  if (fused.vertex_count() <= options.base_vertices) return fused;
-  return DecimateMesh(fused, decimation);
+  TriangleMesh base = std::move(fused);
+  if (base.vertex_count() > options.base_vertices) {
+    MESHVID_ASSIGN_OR_RETURN(base, DecimateMesh(base, decimation));
+  }
+  // One vertex per fan, as the base mesh coder keeps them (its vertex order found again).
+  SplitNonManifoldVertices(&base);
+  return base;
 }
 
 /// Segments, patches and blend weights of a base over the frames `analysed` (all with

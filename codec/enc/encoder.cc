@@ -208,7 +208,9 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     const bool may_cut = options.max_key_groups == 0 ||
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
     auto analysis_start = Clock::now();
-    MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis, AnalyseKeyGroup(ctx, start, may_cut, &proxies));
+    const int previous_frames = summary.key_groups.empty() ? 0 : summary.key_groups.back().frames;
+    MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
+                             AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies));
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_proxies += analysis.seconds_proxies;
     summary.seconds_segmentation +=

@@ -263,7 +263,9 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
 
 /// Frames a key group that may be cut is first analysed over: where tracking fails fast,
 /// each key group costs a short segmentation; one that holds is analysed again over
-/// key_group_window frames.
+/// key_group_window frames. After a key group of n frames, the next starts with 2n frames
+/// (at least 2, at most this): where every frame is a key frame (fast motion), a key group
+/// then costs a segmentation of 2 frames, not 8.
 constexpr int kFirstKeyGroupWindow = 8;
 
 }  // namespace
@@ -297,7 +299,7 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 /// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains).
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           ProxyCache* cache) {
+                                           int previous_frames, ProxyCache* cache) {
   const EncoderOptions& options = ctx.options;
   KeyGroupAnalysis analysis;
   KeyGroupSummary& summary = analysis.summary;
@@ -345,7 +347,10 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   SegmentedMotion segmented;
   int stop = start;
   int kept = start;
-  for (const int window : {std::min(kFirstKeyGroupWindow, options.tuning.key_group_window),
+  const int first_window = previous_frames > 0
+                               ? std::clamp(2 * previous_frames, 2, kFirstKeyGroupWindow)
+                               : kFirstKeyGroupWindow;
+  for (const int window : {std::min(first_window, options.tuning.key_group_window),
                            options.tuning.key_group_window}) {
     if (stop > start && (kept < stop || stop == ctx.end || window <= stop - start)) break;
     stop = std::min(ctx.end, start + window);

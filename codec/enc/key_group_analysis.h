@@ -73,10 +73,11 @@ struct KeyGroupAnalysis {
 };
 
 /// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
-/// `may_cut`, where it ends (the first frame its tracked base no longer explains). `cache`
-/// keeps the proxies of frames the next key group may need.
+/// `may_cut`, where it ends (the first frame its tracked base no longer explains), first
+/// looking at a few frames (more after a longer previous key group, `previous_frames`; 0: the
+/// first key group). `cache` keeps the proxies of frames the next key group may need.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           ProxyCache* cache);
+                                           int previous_frames, ProxyCache* cache);
 
 }  // namespace meshvid
 

@@ -87,6 +87,13 @@ TEST(BaseMeshCoderTest, CoincidentVerticesAreToldApartByTheirTriangles) {
   const TriangleMesh mesh = testing::SphereMesh(4);
   TriangleMesh twins = mesh;
   twins.positions[1] = twins.positions[0] + Eigen::Vector3f(1e-7f, 0, 0);
+  // And a sliver on its own whose three corners share one quantised position: nothing tells
+  // them apart, and nothing needs to (any assignment decodes the same).
+  const std::uint32_t first = static_cast<std::uint32_t>(twins.positions.size());
+  for (int c = 0; c < 3; ++c) {
+    twins.positions.push_back(Eigen::Vector3f(0.1f, 0.2f, 0.3f) + Eigen::Vector3f(0, 1e-7f * c, 0));
+  }
+  twins.triangles.push_back(Triangle(first, first + 1, first + 2));
   auto sequential_settings = BaseMeshEncoding{};
   sequential_settings.try_edgebreaker = false;
   auto sequential = EncodeBaseMesh(twins, sequential_settings);

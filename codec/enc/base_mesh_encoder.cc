@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -66,9 +67,10 @@ Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings)
 
 /// Where Draco put each input vertex: the one decoded vertex within a quantisation step.
 /// Vertices that share a position with others (a contour's coincident vertices) have several
-/// candidates; they are told apart by the triangles around them: an input triangle whose
-/// other two corners are placed names the decoded triangle, and so its third corner. False
-/// when some vertex stays unplaced.
+/// candidates; they are told apart by the triangles around them (an input triangle whose
+/// other two corners are placed names the decoded triangle, and so its third corner) or by
+/// elimination (one candidate left untaken); coincident vertices nothing tells apart take
+/// free candidates that keep their triangles' orientation. False when that fails.
 bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int position_bits,
                    std::vector<std::uint32_t>* vertex_in_decoded) {
   constexpr std::uint32_t kUnplaced = ~0u;
@@ -117,8 +119,59 @@ bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int po
         progress = true;
       }
     }
+    // A vertex with one candidate left untaken has it.
+    for (auto it = candidates.begin(); it != candidates.end();) {
+      std::uint32_t free_count = 0, last_free = 0;
+      for (std::uint32_t w : it->second) {
+        if (!taken[w]) ++free_count, last_free = w;
+      }
+      if (free_count != 1) {
+        ++it;
+        continue;
+      }
+      taken[last_free] = 1;
+      (*vertex_in_decoded)[it->first] = last_free;
+      it = candidates.erase(it);
+      progress = true;
+    }
   }
-  return candidates.empty();
+  // Left: clusters of coincident vertices no placed neighbour tells apart (a sliver whose
+  // corners all share one quantised position). Any untaken candidates decode to the same
+  // place; a search over them keeps each triangle's orientation.
+  std::vector<std::uint32_t> left;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> triangles_of;  // of the left vertices
+  for (const auto& entry : candidates) left.push_back(entry.first);
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      if (candidates.count(mesh.triangles[t][c])) triangles_of[mesh.triangles[t][c]].push_back(t);
+    }
+  }
+  auto consistent = [&](std::uint32_t v) {
+    for (std::uint32_t t : triangles_of[v]) {
+      const Triangle& tri = mesh.triangles[t];
+      const std::uint32_t a = (*vertex_in_decoded)[tri[0]], b = (*vertex_in_decoded)[tri[1]],
+                          c = (*vertex_in_decoded)[tri[2]];
+      if (a == kUnplaced || b == kUnplaced || c == kUnplaced) continue;
+      const auto edge = third.find({a, b});
+      if (edge == third.end() || edge->second != c) return false;
+    }
+    return true;
+  };
+  int budget = 100000;  // assignments tried before giving up (the sequential coder then)
+  std::function<bool(std::size_t)> place = [&](std::size_t i) {
+    if (i == left.size()) return true;
+    const std::uint32_t v = left[i];
+    for (std::uint32_t w : candidates.at(v)) {
+      if (taken[w] || --budget < 0) continue;
+      taken[w] = 1;
+      (*vertex_in_decoded)[v] = w;
+      if (consistent(v) && place(i + 1)) return true;
+      taken[w] = 0;
+      (*vertex_in_decoded)[v] = kUnplaced;
+    }
+    return false;
+  };
+  return place(0);
 }
 
 /// Finds where Draco put every input vertex and triangle (MatchVertices), and checks that the

@@ -69,6 +69,9 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("tuning.min_solved_share must be in [0, 1]");
   }
   if (o.tuning.patch_vertices < 0) return bad("tuning.patch_vertices must be >= 0");
+  if (o.tuning.base_position_bits < 8 || o.tuning.base_position_bits > 24) {
+    return bad("tuning.base_position_bits must be in 8..24");
+  }
   if (!(o.tuning.patch_stiffness > 0)) return bad("tuning.patch_stiffness must be positive");
   if (o.tuning.max_segments < 1 || o.tuning.max_segments > 65535) {
     return bad("tuning.max_segments must be in 1..65535");
@@ -197,6 +200,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   settings.codec = options.codec;
   settings.qp = QualityToQp(options.codec, options.quality);
   settings.effort = options.effort;
+  settings.base.position_bits = options.tuning.base_position_bits;
   settings.gof_size = options.gof_size;
   settings.frame_rate = source.frame_rate();
   settings.frame_count = static_cast<std::uint32_t>(frames);

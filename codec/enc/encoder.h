@@ -31,6 +31,10 @@ struct EncoderTuning {
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;
+  /// Draco position quantisation of the base meshes, bits per coordinate of the bounding box
+  /// (the displacements correct what it moves along the normals). Samba, 3 views, 30 frames:
+  /// 12 bits code each base in 39% fewer bytes than 16 for 0.01 mm more RMS error.
+  int base_position_bits = 12;
 
   // --- correspondence (docs/encoder-method.md eq. 4)
   double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy

@@ -50,6 +50,7 @@ Status WithFlagNames(const Status& status) {
       {"base_vertices", "--base-vertices"},
       {"base_max_error", "--base-max-error"},
       {"base_max_normal_deviation_degrees", "--base-max-normal-deviation"},
+      {"base_position_bits", "--base-bits"},
       {"tolerance", "--tol"},
       {"initial_tolerance_factor", "--tol-start"},
       {"tolerance_shrink", "--tol-shrink"},
@@ -286,6 +287,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--base-max-normal-deviation", o.tuning.base_max_normal_deviation_degrees,
                   "Largest normal change of a decimation step, degrees")
+      ->capture_default_str();
+  cmd->add_option("--base-bits", o.tuning.base_position_bits,
+                  "Draco position quantisation of the base meshes, bits per coordinate "
+                  "(8..24; the displacements correct what it moves along the normals)")
       ->capture_default_str();
   cmd->add_option("--tol", o.tuning.tolerance,
                   "Segmentation tolerance UserTol (eq. 6): largest distance between a "

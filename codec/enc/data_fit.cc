@@ -18,11 +18,28 @@ struct Sums {
   std::size_t unexplained = 0;
 };
 
+/// The median distance from a sample to its nearest other sample (over at most 1024 of them).
+float SampleSpacing(const PointTree& tree, std::span<const Eigen::Vector3f> samples) {
+  const std::size_t stride = std::max<std::size_t>(1, samples.size() / 1024);
+  std::vector<float> spacings;
+  for (std::size_t i = 0; i < samples.size(); i += stride) {
+    std::uint32_t nearest[2] = {0, 0};
+    float squared[2] = {0, 0};
+    if (tree.knnSearch(samples[i].data(), 2, nearest, squared) == 2) {
+      spacings.push_back(std::sqrt(squared[1]));
+    }
+  }
+  if (spacings.empty()) return 0;
+  std::nth_element(spacings.begin(), spacings.begin() + spacings.size() / 2, spacings.end());
+  return spacings[spacings.size() / 2];
+}
+
 }  // namespace
 
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
-                       float representable_distance, float stray_distance) {
+                       float representable_distance, float stray_distance,
+                       std::span<const Eigen::Vector3f> sample_normals) {
   DataFit fit;
   fit.points = data_points.size();
   if (data_points.empty()) return fit;
@@ -34,6 +51,9 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   const PointCloud cloud{surface_samples};
   const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const float limit_squared = representable_distance * representable_distance;
+  const bool along_normals = sample_normals.size() == surface_samples.size();
+  const float across_limit =
+      along_normals ? representable_distance + SampleSpacing(tree, surface_samples) : 0;
   const Sums sums = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, data_points.size(), 2048), Sums{},
       [&](const tbb::blocked_range<std::size_t>& range, Sums partial) {
@@ -42,7 +62,14 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
           float squared = 0;
           tree.knnSearch(data_points[i].data(), 1, &nearest, &squared);
           partial.squares += squared;
-          partial.unexplained += squared > limit_squared;
+          if (along_normals) {
+            const Eigen::Vector3f offset = data_points[i] - surface_samples[nearest];
+            const float along = std::abs(sample_normals[nearest].dot(offset));
+            const float across = std::sqrt(std::max(0.0f, squared - along * along));
+            partial.unexplained += along > representable_distance || across > across_limit;
+          } else {
+            partial.unexplained += squared > limit_squared;
+          }
         }
         return partial;
       },

@@ -27,12 +27,16 @@ struct DataFit {
 };
 
 /// Measures how far `data_points` lie from the surface sampled by `surface_samples` (nearest
-/// sample, k-d tree; samples should be much denser than `representable_distance`). A point is
-/// unexplained when it is farther than `representable_distance`; a surface sample strays when
-/// it is farther than `stray_distance` from every data point.
+/// sample, k-d tree). A point is unexplained when it is farther than `representable_distance`
+/// from its nearest sample; with `sample_normals` (one per sample), when it is farther than
+/// that along the sample's normal (what a displacement can reach) or farther across it than
+/// that plus the samples' spacing (beyond the surface's edge), so samples need not be denser
+/// than the distance. A surface sample strays when it is farther than `stray_distance` from
+/// every data point.
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
-                       float representable_distance, float stray_distance);
+                       float representable_distance, float stray_distance,
+                       std::span<const Eigen::Vector3f> sample_normals = {});
 
 /// The share of a key frame's points its own base may leave unexplained: beyond it the fusion
 /// failed (a Poisson surface that lost most of the subject). Measured on key frames: samba

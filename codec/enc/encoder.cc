@@ -20,7 +20,9 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.scale = scale;
   l.max_distance = pick(o.tuning.max_distance, 0.08);
   l.tolerance = pick(o.tuning.tolerance, 0.005);
-  l.detail_max_distance = pick(o.tuning.detail_max_distance, 0.02);
+  // One base for the whole capture must absorb every tracking error in its displacements;
+  // where key groups may be cut, a frame beyond a narrow range gets a fresh base instead.
+  l.detail_max_distance = pick(o.tuning.detail_max_distance, o.max_key_groups == 1 ? 0.02 : 0.005);
   l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
   l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   return l;

@@ -61,7 +61,12 @@ struct EncoderTuning {
   double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
 
   // --- detail (docs/encoder-method.md section 4)
-  double detail_max_distance = 0;  ///< farthest hit along a sample normal (0: 2%)
+  /// Farthest hit along a sample normal, and the displacement range a key group must keep its
+  /// frame's data within (0: 0.5% of the diagonal; 2% with max_key_groups 1, where one base
+  /// must absorb every tracking error). Measured over 60 frames of samba on the 3-view arc:
+  /// 0.5% decodes at 0.71 mm RMS accuracy, 1% at 1.35 mm, 2% at 3.47 mm (its far hits at the
+  /// surface's open edges land on the wrong side), for 1.9x and 1.4x the bytes.
+  double detail_max_distance = 0;
   double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
 
   // --- analysis window

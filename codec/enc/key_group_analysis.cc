@@ -62,7 +62,8 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
   std::vector<Eigen::Vector3f> samples, directions;
   EvaluateSampleFrames(lattice, lattice.levels(), base.positions, ComputeVertexNormals(base),
                        &samples, &directions);
-  return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity());
+  return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity(),
+                        directions);
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
@@ -195,7 +196,7 @@ class FitMeter {
     PoseVertices(motion_, transforms, base_.positions, &posed_);
     ComputeVertexNormals(posed_, base_.triangles, &normals_);
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    return MeasureDataFit(samples_, points, distance_, stray_distance_);
+    return MeasureDataFit(samples_, points, distance_, stray_distance_, directions_);
   }
 
  private:

@@ -349,7 +349,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Largest angle between a shooting normal and the data's normal, degrees")
       ->capture_default_str();
   cmd->add_option("--detail-distance", o.tuning.detail_max_distance,
-                  "Farthest displacement measured along a sample normal (0: 2% of the size)")
+                  "Farthest displacement measured along a sample normal, and the range a key "
+                  "group must keep its frames' data within (0: 0.5% of the size; 2% with "
+                  "--max-key-groups 1)")
       ->capture_default_str();
   cmd->add_option("--outlier-distance", o.tuning.outlier_distance,
                   "Hits this far from the views' median are dropped (0: 0.5% of the size)")

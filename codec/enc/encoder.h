@@ -58,7 +58,29 @@ struct EncoderTuning {
   /// Unregistered vertices are split into patches of this many vertices, tracked jointly
   /// (patch_tracking.h); 0: interpolated from the segments, as in the paper.
   int patch_vertices = 40;
-  double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
+  /// Weight of neighbouring pieces agreeing where they meet, against a point's distance to
+  /// the data: in the patch tracking and in the frame-to-frame graph tracker.
+  double patch_stiffness = 1;
+
+  // --- frame-to-frame tracking (graph_tracking.h; docs/encoder-method.md section 3.3)
+  /// Track frames with the joint piece-graph tracker: every segment and patch solved
+  /// together from a constant-velocity prediction, held together where they meet, poorly
+  /// supported pieces searched for again. False: each segment alone (TrackSegments), used
+  /// only past the segmentation's frames, as before the tracker.
+  bool graph_tracking = true;
+  /// Geman-McClure scale of the tracker's point-to-plane residuals, as a share of the
+  /// current tolerance (0: every correspondence within the tolerance weighs 1).
+  double track_robust_scale = 0.5;
+  /// Weight of each piece staying where the tracker's step starts, per member (damping).
+  double track_prior_weight = 0.01;
+  /// A piece with fewer of its members agreeing with the data (within the tolerance) after
+  /// the joint solve is searched for again; a new pose must reach this share too.
+  double reacquire_below = 0.5;
+  /// A re-acquired pose is kept when this share more of the piece's members agree with it.
+  double reacquire_gain = 0.2;
+  int reacquire_min_vertices = 12;    ///< smaller pieces are not searched for alone
+  /// Widest closest-point radius a lost piece is searched for within (0: 25%).
+  double reacquire_max_distance = 0;
 
   // --- detail (docs/encoder-method.md section 4)
   /// Farthest hit along a sample normal, and the displacement range a key group must keep its

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -109,8 +111,36 @@ struct SegmentedMotion {
   std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
 };
 
+/// Tracks patches fixed_count..total_count-1 of `labels` through the frames of `targets`
+/// (with their points) with the graph tracker, the segments below fixed_count held to their
+/// `transforms`, to which the patches' are appended (frame 0: the identity).
+void TrackPatchesByGraph(const EncodeContext& ctx, const BaseTopology& base,
+                         const std::vector<std::int32_t>& labels, int fixed_count,
+                         int total_count, const std::vector<const ShootingTarget*>& targets,
+                         const std::vector<std::span<const Eigen::Vector3f>>& points,
+                         std::vector<std::vector<RigidTransform>>* transforms) {
+  const GraphTracker tracker(base, labels, total_count, ctx.seg, ctx.track, fixed_count);
+  for (auto& frame : *transforms) frame.resize(total_count);
+  for (std::size_t k = 1; k < targets.size(); ++k) {
+    auto& frame = (*transforms)[k];
+    const auto& previous = (*transforms)[k - 1];
+    const std::span<const RigidTransform> before =
+        k >= 2 ? std::span<const RigidTransform>((*transforms)[k - 2])
+               : std::span<const RigidTransform>();
+    if (targets[k] == nullptr) {
+      for (int p = fixed_count; p < total_count; ++p) {
+        frame[p] = before.empty() ? previous[p] : PredictConstantVelocity(before[p], previous[p]);
+      }
+      continue;
+    }
+    const std::vector<RigidTransform> fixed(frame.begin(), frame.begin() + fixed_count);
+    frame = tracker.Track(*targets[k], points[k], previous, before, fixed);
+  }
+}
+
 StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopology& base,
                                         const std::vector<const ShootingTarget*>& targets,
+                                        const std::vector<std::span<const Eigen::Vector3f>>& points,
                                         KeyGroupSummary* summary) {
   const EncoderOptions& options = ctx.options;
   SegmentationOptions seg = ctx.seg;
@@ -137,9 +167,14 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     result.segment_count = PartitionUnregistered(base, segmentation.segment_count,
                                                  options.tuning.min_segment_vertices, patching,
                                                  &result.labels);
-    MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
-                                         result.segment_count, targets, seg, patching,
-                                         &segmentation.transforms, ctx.progress));
+    if (options.tuning.graph_tracking) {
+      TrackPatchesByGraph(ctx, base, result.labels, segmentation.segment_count,
+                          result.segment_count, targets, points, &segmentation.transforms);
+    } else {
+      MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
+                                           result.segment_count, targets, seg, patching,
+                                           &segmentation.transforms, ctx.progress));
+    }
     result.segment_count =
         MergePatchesIntoSegments(base, segmentation.segment_count, result.segment_count, seg,
                                  &result.labels, &segmentation.transforms);
@@ -207,6 +242,32 @@ class FitMeter {
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
 };
 
+/// The tracks of a frame of a key group from its previous frames (`tracks`, the last is the
+/// frame before): the joint graph tracker's (tuning.graph_tracking) or each segment's alone.
+std::vector<RigidTransform> TrackFrame(const EncodeContext& ctx, const BaseTopology& topology,
+                                       const SegmentedMotion& segmented,
+                                       const GraphTracker* tracker, const FrameProxy& proxy,
+                                       std::span<const std::vector<RigidTransform>> tracks) {
+  const std::vector<RigidTransform>& previous = tracks.back();
+  if (!proxy.target) return previous;
+  if (tracker == nullptr) {
+    return TrackSegments(topology, segmented.labels, segmented.segment_count, *proxy.target,
+                         previous, ctx.seg);
+  }
+  const std::span<const RigidTransform> before =
+      tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
+                         : std::span<const RigidTransform>();
+  return tracker->Track(*proxy.target, proxy.points, previous, before);
+}
+
+/// The graph tracker of a segmentation's pieces, or nothing when tuning.graph_tracking is off.
+std::unique_ptr<GraphTracker> MakeTracker(const EncodeContext& ctx, const BaseTopology& topology,
+                                          const SegmentedMotion& segmented) {
+  if (!ctx.options.tuning.graph_tracking) return nullptr;
+  return std::make_unique<GraphTracker>(topology, segmented.labels, segmented.segment_count,
+                                        ctx.seg, ctx.track);
+}
+
 /// The motion of a key group's base over frames [start, stop): every `stride`-th frame
 /// segmented jointly (proxies cached), the others tracked from the previous frame. Fills the
 /// analysis' motion, tracks (stop - start of them) and segment figures.
@@ -231,25 +292,28 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
   }
   analysis->seconds_proxies += SecondsSince(stage_start);
   std::vector<const ShootingTarget*> targets;
-  for (int t : analysed) targets.push_back((*proxies)[t].target.get());
+  std::vector<std::span<const Eigen::Vector3f>> points;
+  for (int t : analysed) {
+    targets.push_back((*proxies)[t].target.get());
+    points.push_back((*proxies)[t].points);
+  }
   MESHVID_ASSIGN_OR_RETURN(SegmentedMotion segmented,
-                           SegmentFrames(ctx, topology, targets, &analysis->summary));
+                           SegmentFrames(ctx, topology, targets, points, &analysis->summary));
   std::vector<std::vector<RigidTransform>>& tracks = analysis->tracks;
   tracks.assign(stop - start, {});
   for (std::size_t k = 0; k < analysed.size(); ++k) {
     tracks[analysed[k] - start] = segmented.tracks[k];
   }
-  // Frames between analysed frames: tracked from the previous frame with the fixed segments.
+  // Frames between analysed frames: tracked from the previous frames with the fixed pieces.
+  const std::unique_ptr<GraphTracker> tracker =
+      stride > 1 ? MakeTracker(ctx, topology, segmented) : nullptr;
   for (int t = start + 1; stride > 1 && t < stop; ++t) {
     if ((t - start) % stride == 0) continue;
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
-    const auto& previous = tracks[t - start - 1];
-    tracks[t - start] = proxy.target ? TrackSegments(topology, segmented.labels,
-                                                     segmented.segment_count, *proxy.target,
-                                                     previous, ctx.seg)
-                                     : previous;
+    tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
+                                   std::span(tracks.data(), std::size_t(t - start)));
   }
   SmoothTracks(options.tuning.track_smoothing, &tracks);
   analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
@@ -346,6 +410,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     return true;
   };
   SegmentedMotion segmented;
+  std::unique_ptr<GraphTracker> tracker;
   int stop = start;
   int kept = start;
   const int first_window = previous_frames > 0
@@ -364,12 +429,21 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.worst_unexplained = key_fit.unexplained_share;
     summary.cut_unexplained = -1;
+    tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;
     for (int t = start + 1; t < stop; ++t) {
-      if (!explained(t, proxies[t].points)) {
-        kept = t;
-        break;
+      if (explained(t, proxies[t].points)) continue;
+      // The segmentation lost the frame: tracked again from the frames before it.
+      if (tracker) {
+        tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t],
+                                       std::span(tracks.data(), std::size_t(t - start)));
+        if (explained(t, proxies[t].points)) {
+          summary.cut_unexplained = -1;
+          continue;
+        }
       }
+      kept = t;
+      break;
     }
   }
   // Past the analysed frames: tracked frame by frame while the base explains the data.
@@ -378,13 +452,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction));
-    const FrameProxy& proxy = proxies[t];
-    const std::vector<RigidTransform> previous = tracks.back();
-    tracks.push_back(proxy.target ? TrackSegments(topology, segmented.labels,
-                                                  segmented.segment_count, *proxy.target,
-                                                  previous, ctx.seg)
-                                  : previous);
-    if (!explained(t, proxy.points)) {
+    tracks.push_back(TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t], tracks));
+    if (!explained(t, proxies[t].points)) {
       tracks.pop_back();
       break;
     }

@@ -89,6 +89,34 @@ TEST(GraphTracking, ReacquiresAPartDisplacedByAFifthOfTheObject) {
   EXPECT_GT(RmsApart(base, body, base.vertex_count(), lost[1], truth), 5 * seg.tolerance);
 }
 
+TEST(GraphTracking, SplitsLargePiecesIntoConnectedNodes) {
+  const TriangleMesh sphere = testing::LatLongSphere(16, 32);
+  const BaseTopology topology(sphere);
+  // Piece 0: the upper half; piece 1: the lower half less a small cap, piece 2.
+  std::vector<std::int32_t> labels(sphere.vertex_count());
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    labels[v] = sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2;
+  }
+  std::vector<std::int32_t> parents;
+  const int count = SplitIntoNodes(topology, 3, 40, 64, &labels, &parents);
+  ASSERT_EQ(parents.size(), std::size_t(count));
+  EXPECT_GE(count, 3 + 8);
+  std::vector<int> sizes(count, 0);
+  for (std::int32_t l : labels) ++sizes[l];
+  for (int p = 0; p < count; ++p) {
+    EXPECT_GE(sizes[p], 3) << "node " << p;
+    EXPECT_LE(sizes[p], 3 * 40) << "node " << p;
+  }
+  // Every node lies within the piece it came from (the halves stay apart).
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    const int piece = parents[labels[v]];
+    EXPECT_EQ(piece, sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2);
+  }
+  // The budget holds: at most 5 pieces.
+  std::vector<std::int32_t> few(sphere.vertex_count(), 0);
+  EXPECT_EQ(SplitIntoNodes(topology, 1, 40, 5, &few, &parents), 5);
+}
+
 /// A capped tube along x (length 2, radius 0.2) bent at its middle: the right half turned by
 /// `angle` about the z axis, the left half still, the cross-sections between x = -0.3 and 0.3
 /// turned by a smooth share of it (an elbow).
@@ -110,8 +138,8 @@ TriangleMesh BentCylinder(int rings, int around, float angle) {
   const auto ring = [&](int i, int j) { return std::uint32_t(i * around + (j % around)); };
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < around; ++j) {
-      mesh.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      mesh.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+      mesh.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
+      mesh.triangles.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
     }
   }
   // Caps: a fan about each end's centre.
@@ -133,6 +161,13 @@ float SwingAngle(int frame) {
   return float(tenths) * 10 * kPi / 180;
 }
 
+// Disabled: the target, not met yet. Measured on this branch: 55 key groups of 1-5
+// frames. The base fused from a key frame leaves 4-8% of that frame's own points
+// unexplained and has surface 0.11-0.35 from the data (farthest_from_data), and at frame 1
+// the graph tracker's re-track of the segmentation's pieces leaves 66% of the points
+// unexplained. On the analytic base (the same tracker, 12 nodes of 48 vertices, all free)
+// the RMS distance to the data is 0.3% of the diagonal at frame 1, 1.7% at frame 2 and 5%
+// at 60 degrees with the default stiffness of 1; 0.1%, 0.2% and 1.7% with a stiffness of 0.1.
 TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
   const int frame_count = 60;
   std::vector<TriangleMesh> frames;

@@ -82,6 +82,7 @@ Status CheckOptions(const EncoderOptions& o) {
       !(o.tuning.reacquire_gain >= 0 && o.tuning.reacquire_gain <= 1)) {
     return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
   }
+  if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
   if (o.tuning.reacquire_min_vertices < 3) {
     return bad("tuning.reacquire_min_vertices must be at least 3");
   }

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "codec/common/point_tree.h"
+#include "codec/enc/patch_tracking.h"
 #include "codec/enc/rigid_step.h"
 
 namespace meshvid {
@@ -113,6 +114,40 @@ PieceGraph BuildPieceGraph(const BaseTopology& base, std::span<const std::int32_
     }
   }
   return graph;
+}
+
+int SplitIntoNodes(const BaseTopology& base, int piece_count, int node_vertices, int max_pieces,
+                   std::vector<std::int32_t>* labels, std::vector<std::int32_t>* parents) {
+  parents->resize(piece_count);
+  for (int p = 0; p < piece_count; ++p) (*parents)[p] = p;
+  if (node_vertices < 3) return piece_count;
+  std::vector<std::size_t> sizes(piece_count, 0);
+  for (std::int32_t l : *labels) {
+    if (l >= 0 && l < piece_count) ++sizes[l];
+  }
+  std::vector<int> order(piece_count);
+  for (int p = 0; p < piece_count; ++p) order[p] = p;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return sizes[a] > sizes[b]; });
+  int count = piece_count;
+  std::vector<std::int32_t> alone(labels->size());
+  for (int p : order) {
+    if (sizes[p] <= std::size_t(node_vertices) || count >= max_pieces) break;
+    // The piece's vertices are the only unregistered ones; its nodes are labelled count...
+    for (std::size_t v = 0; v < alone.size(); ++v) alone[v] = (*labels)[v] == p ? -1 : 0;
+    PatchTrackingOptions split;
+    split.patch_vertices = node_vertices;
+    split.max_segments = max_pieces + 1;  // the first node returns to the piece's label
+    const int end = PartitionUnregistered(base, count, 3, split, &alone);
+    if (end <= count + 1) continue;
+    for (std::size_t v = 0; v < alone.size(); ++v) {
+      if ((*labels)[v] != p) continue;
+      const std::int32_t node = alone[v];
+      if (node > count) (*labels)[v] = node - 1;  // else: the first node, or a scrap: stays p
+    }
+    for (int k = count; k < end - 1; ++k) parents->push_back(p);
+    count = end - 1;
+  }
+  return count;
 }
 
 void JointStep(const BaseTopology& base, const PieceGraph& graph, const ShootingTarget& target,

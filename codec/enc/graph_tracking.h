@@ -44,6 +44,14 @@ struct PieceGraph {
 PieceGraph BuildPieceGraph(const BaseTopology& base, std::span<const std::int32_t> labels,
                            int fixed_count, int piece_count);
 
+/// Splits every piece of more than `node_vertices` members (largest first) into connected
+/// nodes of about that many (patch_tracking.h's PartitionUnregistered within the piece): the
+/// first keeps the piece's label, the others are appended, while at most `max_pieces` pieces
+/// exist. `parents` gets, per piece, the piece it came from (itself for the old ones).
+/// Returns the new piece count.
+int SplitIntoNodes(const BaseTopology& base, int piece_count, int node_vertices, int max_pieces,
+                   std::vector<std::int32_t>* labels, std::vector<std::int32_t>* parents);
+
 /// The terms of one joint Gauss-Newton step.
 struct JointStepSettings {
   ShotLimits shot;       ///< the correspondence search (normal shooting)
@@ -74,7 +82,7 @@ void SolveJointly(const BaseTopology& base, const PieceGraph& graph, const Shoot
 /// The constants of the graph tracker (EncoderTuning holds each as an option).
 struct GraphTrackingOptions {
   float stiffness = 1;           ///< JointStepSettings::stiffness
-  float robust_scale = 0.5f;     ///< JointStepSettings::robust_scale
+  float robust_scale = 0;        ///< JointStepSettings::robust_scale
   double prior_weight = 0.01;    ///< JointStepSettings::prior_weight
   /// A piece with fewer than this share of its members agreeing with the data (within
   /// seg.tolerance) after the joint solve is searched for again.

@@ -109,6 +109,7 @@ struct SegmentedMotion {
   std::vector<std::int32_t> labels;
   int segment_count = 0;
   std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
+  int soft_from = 0;  ///< pieces from this one on blend into their neighbours
 };
 
 /// Tracks patches fixed_count..total_count-1 of `labels` through the frames of `targets`
@@ -178,6 +179,20 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     result.segment_count =
         MergePatchesIntoSegments(base, segmentation.segment_count, result.segment_count, seg,
                                  &result.labels, &segmentation.transforms);
+  }
+  result.soft_from = segmentation.segment_count;
+  if (options.tuning.graph_tracking && options.tuning.graph_node_vertices > 0) {
+    // Graph nodes: pieces larger than a node are split; the nodes of a piece move with it
+    // through the analysed frames and apart from it where the frames after them need.
+    std::vector<std::int32_t> parents;
+    const int split =
+        SplitIntoNodes(base, result.segment_count, options.tuning.graph_node_vertices,
+                       options.tuning.max_segments, &result.labels, &parents);
+    for (auto& frame : segmentation.transforms) {
+      for (int p = result.segment_count; p < split; ++p) frame.push_back(frame[parents[p]]);
+    }
+    if (split > result.segment_count && options.tuning.soft_nodes) result.soft_from = 0;
+    result.segment_count = split;
   }
   summary->patches = result.segment_count - segmentation.segment_count;
   result.tracks = std::move(segmentation.transforms);
@@ -319,7 +334,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
   analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
                                             segmented.segment_count,
                                             /*smoothing=*/4,
-                                            /*soft_from=*/analysis->summary.segments);
+                                            /*soft_from=*/segmented.soft_from);
   std::vector<std::vector<RigidTransform>> analysed_tracks;
   for (int t : analysed) analysed_tracks.push_back(tracks[t - start]);
   MarkSurface(ctx, base, targets, analysed_tracks, &analysis->motion, &analysis->summary);

@@ -64,6 +64,7 @@ Status WithFlagNames(const Status& status) {
       {"track_smoothing", "--smoothing"},
       {"patch_vertices", "--patch-vertices"},
       {"patch_stiffness", "--stiffness"},
+      {"graph_node_vertices", "--node-vertices"},
       {"track_robust_scale", "--track-robust"},
       {"track_prior_weight", "--track-prior"},
       {"reacquire_below", "--reacquire-below"},
@@ -347,6 +348,13 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--graph-tracking", o.tuning.graph_tracking,
                   "Track frames with the joint piece graph (segments and patches solved "
                   "together, lost pieces searched for again); false: each segment alone")
+      ->capture_default_str();
+  cmd->add_option("--node-vertices", o.tuning.graph_node_vertices,
+                  "Pieces larger than this are split into graph nodes of about this many "
+                  "vertices for the tracking (0: not split)")
+      ->capture_default_str();
+  cmd->add_option("--soft-nodes", o.tuning.soft_nodes,
+                  "Blend every graph node into its neighbours (false: only the patches)")
       ->capture_default_str();
   cmd->add_option("--track-robust", o.tuning.track_robust_scale,
                   "Geman-McClure scale of the tracker's residuals, x the current tolerance (0: "

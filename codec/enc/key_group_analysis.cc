@@ -110,6 +110,7 @@ struct SegmentedMotion {
   int segment_count = 0;
   std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
   int soft_from = 0;  ///< pieces from this one on blend into their neighbours
+  std::vector<std::int32_t> parents;  ///< per piece, the piece its graph node was split from
 };
 
 /// Tracks patches fixed_count..total_count-1 of `labels` through the frames of `targets`
@@ -193,6 +194,7 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     }
     if (split > result.segment_count && options.tuning.soft_nodes) result.soft_from = 0;
     result.segment_count = split;
+    result.parents = std::move(parents);
   }
   summary->patches = result.segment_count - segmentation.segment_count;
   result.tracks = std::move(segmentation.transforms);
@@ -256,6 +258,59 @@ class FitMeter {
   float distance_, stray_distance_;
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
 };
+
+/// Graph nodes that moved with the piece they were split from in every frame of the key
+/// group (RMS apart over their members within the tolerance) join it again, so a rigid part
+/// stays one segment; the blend weights and tracks are rebuilt to match.
+void RejoinNodes(const EncodeContext& ctx, const BaseTopology& topology,
+                 SegmentedMotion* segmented, KeyGroupAnalysis* analysis) {
+  const int count = segmented->segment_count;
+  const std::vector<std::int32_t>& parents = segmented->parents;
+  if (static_cast<int>(parents.size()) != count) return;
+  std::vector<std::vector<std::uint32_t>> members(count);
+  for (std::uint32_t v = 0; v < segmented->labels.size(); ++v) {
+    if (segmented->labels[v] >= 0) members[segmented->labels[v]].push_back(v);
+  }
+  const auto& positions = topology.mesh.positions;
+  const double tolerance = ctx.seg.tolerance;
+  std::vector<std::int32_t> index(count, -1);
+  int kept = 0;
+  for (int p = 0; p < count; ++p) {
+    const std::int32_t q = parents[p];
+    bool together = q != p && !members[p].empty();
+    for (std::size_t f = 0; together && f < analysis->tracks.size(); ++f) {
+      const auto& frame = analysis->tracks[f];
+      double squared = 0;
+      for (std::uint32_t v : members[p]) {
+        squared += (frame[p].Apply(positions[v]) - frame[q].Apply(positions[v])).squaredNorm();
+      }
+      together = squared <= tolerance * tolerance * double(members[p].size());
+    }
+    if (!together) index[p] = kept++;
+  }
+  if (kept == count) return;
+  for (std::int32_t& l : segmented->labels) {
+    if (l >= 0) l = index[l] >= 0 ? index[l] : index[parents[l]];
+  }
+  for (auto& frame : analysis->tracks) {
+    std::vector<RigidTransform> rejoined;
+    for (int p = 0; p < count; ++p) {
+      if (index[p] >= 0) rejoined.push_back(frame[p]);
+    }
+    frame = std::move(rejoined);
+  }
+  std::vector<std::int32_t> kept_parents;
+  for (int p = 0; p < count; ++p) {
+    if (index[p] >= 0) kept_parents.push_back(index[parents[p]]);
+  }
+  segmented->parents = std::move(kept_parents);
+  segmented->segment_count = kept;
+  analysis->summary.patches -= count - kept;
+  std::vector<std::uint8_t> surface = std::move(analysis->motion.surface_triangles);
+  analysis->motion = BlendWeightsFromLabels(topology, segmented->labels, kept, /*smoothing=*/4,
+                                            segmented->soft_from);
+  analysis->motion.surface_triangles = std::move(surface);
+}
 
 /// The tracks of a frame of a key group from its previous frames (`tracks`, the last is the
 /// frame before): the joint graph tracker's (tuning.graph_tracking) or each segment's alone.
@@ -403,9 +458,11 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   if (!may_cut) {
     // Every remaining frame, or `window` of them spread evenly, segmented jointly.
     const int stride = (ctx.end - start + options.tuning.window - 1) / options.tuning.window;
-    MESHVID_RETURN_IF_ERROR(
-        SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis).status());
+    MESHVID_ASSIGN_OR_RETURN(
+        SegmentedMotion segmented,
+        SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis));
     summary.frames = ctx.end - start;
+    RejoinNodes(ctx, topology, &segmented, &analysis);
     return analysis;
   }
 
@@ -478,6 +535,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   proxies.erase(proxies.begin(), proxies.lower_bound(kept));
   tracks.resize(kept - start);
   summary.frames = kept - start;
+  RejoinNodes(ctx, topology, &segmented, &analysis);
   return analysis;
 }
 

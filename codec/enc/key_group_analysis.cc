@@ -192,9 +192,14 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     for (auto& frame : segmentation.transforms) {
       for (int p = result.segment_count; p < split; ++p) frame.push_back(frame[parents[p]]);
     }
-    if (split > result.segment_count && options.tuning.soft_nodes) result.soft_from = 0;
+    if (split > result.segment_count && options.tuning.blend_nodes) result.soft_from = 0;
     result.segment_count = split;
     result.parents = std::move(parents);
+  }
+  // Hard pieces: each moves its vertices alone (the blends of soft ones cost most of a key
+  // group's motion bytes once there are many pieces).
+  if (options.tuning.graph_tracking && !options.tuning.blend_nodes) {
+    result.soft_from = result.segment_count;
   }
   summary->patches = result.segment_count - segmentation.segment_count;
   result.tracks = std::move(segmentation.transforms);

@@ -353,8 +353,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Pieces larger than this are split into graph nodes of about this many "
                   "vertices for the tracking (0: not split)")
       ->capture_default_str();
-  cmd->add_option("--soft-nodes", o.tuning.soft_nodes,
-                  "Blend every graph node into its neighbours (false: only the patches)")
+  cmd->add_option("--blend-nodes", o.tuning.blend_nodes,
+                  "With graph tracking, blend patches and graph nodes into their neighbours "
+                  "(false: every piece moves its vertices alone)")
       ->capture_default_str();
   cmd->add_option("--track-robust", o.tuning.track_robust_scale,
                   "Geman-McClure scale of the tracker's residuals, x the current tolerance (0: "

@@ -83,6 +83,7 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
   }
   if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
+  if (!(o.tuning.node_rejoin_factor >= 0)) return bad("tuning.node_rejoin_factor must be >= 0");
   if (o.tuning.reacquire_min_vertices < 3) {
     return bad("tuning.reacquire_min_vertices must be at least 3");
   }

@@ -74,6 +74,12 @@ struct EncoderTuning {
   /// Measured (3-arc, 60 frames, key groups): samba 17 unsplit, 11 at 48, 12 at 32;
   /// arm-block 13 unsplit, 8 at 48, 7 at 32 (but more motion bytes per key group).
   int graph_node_vertices = 48;
+  /// A graph node joins the piece it was split from again when the two put its vertices
+  /// within this x the tolerance (RMS) in every frame of the key group. Measured on
+  /// arm-block 3-arc (60 frames, HEVC q40; cli_encode_test's 16 frames for the arm):
+  /// 1, 2, 3 kept 28.7%, 74.2%, 79.7% of the arm in one segment at 36.61, 36.60, 36.59 dB D1
+  /// and 9,714, 10,039, 10,224 bytes/frame.
+  double node_rejoin_factor = 2;
   /// With graph tracking: the patches and graph nodes blend into their neighbours (smooth
   /// where they part). False: every piece moves its vertices alone, only vertices of no
   /// piece blend. Measured on samba 3-arc (60 frames, HEVC q40): blending made the motion

@@ -265,7 +265,8 @@ class FitMeter {
 };
 
 /// Graph nodes that moved with the piece they were split from in every frame of the key
-/// group (RMS apart over their members within the tolerance) join it again, so a rigid part
+/// group (RMS apart over their members within tuning.node_rejoin_factor x the tolerance)
+/// join it again, so a rigid part
 /// stays one segment; the blend weights and tracks are rebuilt to match.
 void RejoinNodes(const EncodeContext& ctx, const BaseTopology& topology,
                  SegmentedMotion* segmented, KeyGroupAnalysis* analysis) {
@@ -277,7 +278,7 @@ void RejoinNodes(const EncodeContext& ctx, const BaseTopology& topology,
     if (segmented->labels[v] >= 0) members[segmented->labels[v]].push_back(v);
   }
   const auto& positions = topology.mesh.positions;
-  const double tolerance = ctx.seg.tolerance;
+  const double tolerance = ctx.seg.tolerance * ctx.options.tuning.node_rejoin_factor;
   std::vector<std::int32_t> index(count, -1);
   int kept = 0;
   for (int p = 0; p < count; ++p) {

@@ -65,6 +65,7 @@ Status WithFlagNames(const Status& status) {
       {"patch_vertices", "--patch-vertices"},
       {"patch_stiffness", "--stiffness"},
       {"graph_node_vertices", "--node-vertices"},
+      {"node_rejoin_factor", "--node-rejoin"},
       {"track_robust_scale", "--track-robust"},
       {"track_prior_weight", "--track-prior"},
       {"reacquire_below", "--reacquire-below"},
@@ -352,6 +353,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--node-vertices", o.tuning.graph_node_vertices,
                   "Pieces larger than this are split into graph nodes of about this many "
                   "vertices for the tracking (0: not split)")
+      ->capture_default_str();
+  cmd->add_option("--node-rejoin", o.tuning.node_rejoin_factor,
+                  "A graph node joins its piece again when the two put it within this x the "
+                  "tolerance (RMS) in every frame of the key group")
       ->capture_default_str();
   cmd->add_option("--blend-nodes", o.tuning.blend_nodes,
                   "With graph tracking, blend patches and graph nodes into their neighbours "

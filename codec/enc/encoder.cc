@@ -25,6 +25,7 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.detail_max_distance = pick(o.tuning.detail_max_distance, o.max_key_groups == 1 ? 0.02 : 0.005);
   l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
   l.base_max_error = pick(o.tuning.base_max_error, 0.01);
+  l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
   return l;
 }
 
@@ -75,15 +76,27 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("tuning.base_position_bits must be in 8..24");
   }
   if (!(o.tuning.patch_stiffness > 0)) return bad("tuning.patch_stiffness must be positive");
+  if (!(o.tuning.track_robust_scale >= 0)) return bad("tuning.track_robust_scale must be >= 0");
+  if (!(o.tuning.track_prior_weight >= 0)) return bad("tuning.track_prior_weight must be >= 0");
+  if (!(o.tuning.reacquire_below >= 0 && o.tuning.reacquire_below <= 1) ||
+      !(o.tuning.reacquire_gain >= 0 && o.tuning.reacquire_gain <= 1)) {
+    return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
+  }
+  if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
+  if (!(o.tuning.node_rejoin_factor >= 0)) return bad("tuning.node_rejoin_factor must be >= 0");
+  if (o.tuning.reacquire_min_vertices < 3) {
+    return bad("tuning.reacquire_min_vertices must be at least 3");
+  }
   if (o.tuning.max_segments < 1 || o.tuning.max_segments > 65535) {
     return bad("tuning.max_segments must be in 1..65535");
   }
   if (o.tuning.max_distance < 0 || o.tuning.tolerance < 0 || o.tuning.detail_max_distance < 0 ||
-      o.tuning.outlier_distance < 0 || o.tuning.base_max_error < 0) {
+      o.tuning.outlier_distance < 0 || o.tuning.base_max_error < 0 ||
+      o.tuning.reacquire_max_distance < 0) {
     return bad(
         "tuning.max_distance, tuning.tolerance, tuning.detail_max_distance, "
-        "tuning.outlier_distance and tuning.base_max_error must not be negative (0 derives "
-        "them from the data)");
+        "tuning.outlier_distance, tuning.base_max_error and tuning.reacquire_max_distance must "
+        "not be negative (0 derives them from the data)");
   }
   return Status::Ok();
 }
@@ -179,7 +192,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   if (!(scale > 0)) {
     return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
   }
-  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end};
+  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}};
   summary.scale = scale;
   summary.tolerance = ctx.lengths.tolerance;
   SegmentationOptions& seg = ctx.seg;
@@ -196,6 +209,14 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   seg.shot.max_distance = ctx.lengths.max_distance;
   seg.shot.min_abs_cos =
       static_cast<float>(std::cos(options.tuning.max_angle_degrees * M_PI / 180));
+  GraphTrackingOptions& track = ctx.track;
+  track.stiffness = static_cast<float>(options.tuning.patch_stiffness);
+  track.robust_scale = static_cast<float>(options.tuning.track_robust_scale);
+  track.prior_weight = options.tuning.track_prior_weight;
+  track.reacquire_below = static_cast<float>(options.tuning.reacquire_below);
+  track.reacquire_gain = static_cast<float>(options.tuning.reacquire_gain);
+  track.reacquire_min_vertices = options.tuning.reacquire_min_vertices;
+  track.reacquire_max_distance = ctx.lengths.reacquire_max_distance;
 
   MvidWriterSettings settings;
   settings.levels = options.levels;

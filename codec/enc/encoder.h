@@ -58,7 +58,50 @@ struct EncoderTuning {
   /// Unregistered vertices are split into patches of this many vertices, tracked jointly
   /// (patch_tracking.h); 0: interpolated from the segments, as in the paper.
   int patch_vertices = 40;
-  double patch_stiffness = 1;    ///< weight of neighbouring pieces agreeing where they meet
+  /// Weight of neighbouring pieces agreeing where they meet, against a point's distance to
+  /// the data: in the patch tracking and in the frame-to-frame graph tracker.
+  double patch_stiffness = 1;
+
+  // --- frame-to-frame tracking (graph_tracking.h; docs/encoder-method.md section 3.3)
+  /// Track frames with the joint piece-graph tracker: every segment and patch solved
+  /// together from a constant-velocity prediction, held together where they meet, poorly
+  /// supported pieces searched for again. False: each segment alone (TrackSegments), used
+  /// only past the segmentation's frames, as before the tracker. Off by default: on the
+  /// 3-view arc (60 frames, HEVC q40) it makes arm-block's key groups 4x longer (51 -> 13)
+  /// at 42% fewer bytes and +0.06 dB D1, but samba's RMS accuracy goes from 0.8 to 1.2 mm
+  /// (-0.01 dB D1, 14% fewer bytes) and horse-gallop encodes at half the speed.
+  bool graph_tracking = false;
+  /// Pieces (segments and patches) larger than this are split into graph nodes of about
+  /// this many vertices for the tracking (within max_segments pieces; 0: not split). A node
+  /// moves with its piece through the segmented frames and apart from it after them.
+  /// Measured (3-arc, 60 frames, key groups): samba 17 unsplit, 11 at 48, 12 at 32;
+  /// arm-block 13 unsplit, 8 at 48, 7 at 32 (but more motion bytes per key group).
+  int graph_node_vertices = 48;
+  /// A graph node joins the piece it was split from again when the two put its vertices
+  /// within this x the tolerance (RMS) in every frame of the key group. Measured on
+  /// arm-block 3-arc (60 frames, HEVC q40; cli_encode_test's 16 frames for the arm):
+  /// 1, 2, 3 kept 28.7%, 74.2%, 79.7% of the arm in one segment at 36.61, 36.60, 36.59 dB D1
+  /// and 9,714, 10,039, 10,224 bytes/frame.
+  double node_rejoin_factor = 2;
+  /// With graph tracking: the patches and graph nodes blend into their neighbours (smooth
+  /// where they part). False: every piece moves its vertices alone, only vertices of no
+  /// piece blend. Measured on samba 3-arc (60 frames, HEVC q40): blending made the motion
+  /// 161 kB instead of 22 kB (7,467 against 5,152 bytes/frame) at 38.69 against 38.72 dB D1.
+  bool blend_nodes = false;
+  /// Geman-McClure scale of the tracker's point-to-plane residuals, as a share of the
+  /// current tolerance (0: every correspondence within the tolerance weighs 1). Measured on
+  /// samba 3-arc (60 frames): 0.5 and 1 made 12 key groups, 0 made 11 at fewer bytes.
+  double track_robust_scale = 0;
+  /// Weight of each piece staying where the tracker's step starts, per member (damping).
+  double track_prior_weight = 0.01;
+  /// A piece with fewer of its members agreeing with the data (within the tolerance) after
+  /// the joint solve is searched for again; a new pose must reach this share too.
+  double reacquire_below = 0.5;
+  /// A re-acquired pose is kept when this share more of the piece's members agree with it.
+  double reacquire_gain = 0.2;
+  int reacquire_min_vertices = 12;    ///< smaller pieces are not searched for alone
+  /// Widest closest-point radius a lost piece is searched for within (0: 25%).
+  double reacquire_max_distance = 0;
 
   // --- detail (docs/encoder-method.md section 4)
   /// Farthest hit along a sample normal, and the displacement range a key group must keep its

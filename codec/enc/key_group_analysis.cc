@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -107,10 +109,40 @@ struct SegmentedMotion {
   std::vector<std::int32_t> labels;
   int segment_count = 0;
   std::vector<std::vector<RigidTransform>> tracks;  ///< per analysed frame
+  int soft_from = 0;  ///< pieces from this one on blend into their neighbours
+  std::vector<std::int32_t> parents;  ///< per piece, the piece its graph node was split from
 };
+
+/// Tracks patches fixed_count..total_count-1 of `labels` through the frames of `targets`
+/// (with their points) with the graph tracker, the segments below fixed_count held to their
+/// `transforms`, to which the patches' are appended (frame 0: the identity).
+void TrackPatchesByGraph(const EncodeContext& ctx, const BaseTopology& base,
+                         const std::vector<std::int32_t>& labels, int fixed_count,
+                         int total_count, const std::vector<const ShootingTarget*>& targets,
+                         const std::vector<std::span<const Eigen::Vector3f>>& points,
+                         std::vector<std::vector<RigidTransform>>* transforms) {
+  const GraphTracker tracker(base, labels, total_count, ctx.seg, ctx.track, fixed_count);
+  for (auto& frame : *transforms) frame.resize(total_count);
+  for (std::size_t k = 1; k < targets.size(); ++k) {
+    auto& frame = (*transforms)[k];
+    const auto& previous = (*transforms)[k - 1];
+    const std::span<const RigidTransform> before =
+        k >= 2 ? std::span<const RigidTransform>((*transforms)[k - 2])
+               : std::span<const RigidTransform>();
+    if (targets[k] == nullptr) {
+      for (int p = fixed_count; p < total_count; ++p) {
+        frame[p] = before.empty() ? previous[p] : PredictConstantVelocity(before[p], previous[p]);
+      }
+      continue;
+    }
+    const std::vector<RigidTransform> fixed(frame.begin(), frame.begin() + fixed_count);
+    frame = tracker.Track(*targets[k], points[k], previous, before, fixed);
+  }
+}
 
 StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopology& base,
                                         const std::vector<const ShootingTarget*>& targets,
+                                        const std::vector<std::span<const Eigen::Vector3f>>& points,
                                         KeyGroupSummary* summary) {
   const EncoderOptions& options = ctx.options;
   SegmentationOptions seg = ctx.seg;
@@ -137,12 +169,37 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     result.segment_count = PartitionUnregistered(base, segmentation.segment_count,
                                                  options.tuning.min_segment_vertices, patching,
                                                  &result.labels);
-    MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
-                                         result.segment_count, targets, seg, patching,
-                                         &segmentation.transforms, ctx.progress));
+    if (options.tuning.graph_tracking) {
+      TrackPatchesByGraph(ctx, base, result.labels, segmentation.segment_count,
+                          result.segment_count, targets, points, &segmentation.transforms);
+    } else {
+      MESHVID_RETURN_IF_ERROR(TrackPatches(base, result.labels, segmentation.segment_count,
+                                           result.segment_count, targets, seg, patching,
+                                           &segmentation.transforms, ctx.progress));
+    }
     result.segment_count =
         MergePatchesIntoSegments(base, segmentation.segment_count, result.segment_count, seg,
                                  &result.labels, &segmentation.transforms);
+  }
+  result.soft_from = segmentation.segment_count;
+  if (options.tuning.graph_tracking && options.tuning.graph_node_vertices > 0) {
+    // Graph nodes: pieces larger than a node are split; the nodes of a piece move with it
+    // through the analysed frames and apart from it where the frames after them need.
+    std::vector<std::int32_t> parents;
+    const int split =
+        SplitIntoNodes(base, result.segment_count, options.tuning.graph_node_vertices,
+                       options.tuning.max_segments, &result.labels, &parents);
+    for (auto& frame : segmentation.transforms) {
+      for (int p = result.segment_count; p < split; ++p) frame.push_back(frame[parents[p]]);
+    }
+    if (split > result.segment_count && options.tuning.blend_nodes) result.soft_from = 0;
+    result.segment_count = split;
+    result.parents = std::move(parents);
+  }
+  // Hard pieces: each moves its vertices alone (the blends of soft ones cost most of a key
+  // group's motion bytes once there are many pieces).
+  if (options.tuning.graph_tracking && !options.tuning.blend_nodes) {
+    result.soft_from = result.segment_count;
   }
   summary->patches = result.segment_count - segmentation.segment_count;
   result.tracks = std::move(segmentation.transforms);
@@ -207,6 +264,86 @@ class FitMeter {
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
 };
 
+/// Graph nodes that moved with the piece they were split from in every frame of the key
+/// group (RMS apart over their members within tuning.node_rejoin_factor x the tolerance)
+/// join it again, so a rigid part
+/// stays one segment; the blend weights and tracks are rebuilt to match.
+void RejoinNodes(const EncodeContext& ctx, const BaseTopology& topology,
+                 SegmentedMotion* segmented, KeyGroupAnalysis* analysis) {
+  const int count = segmented->segment_count;
+  const std::vector<std::int32_t>& parents = segmented->parents;
+  if (static_cast<int>(parents.size()) != count) return;
+  std::vector<std::vector<std::uint32_t>> members(count);
+  for (std::uint32_t v = 0; v < segmented->labels.size(); ++v) {
+    if (segmented->labels[v] >= 0) members[segmented->labels[v]].push_back(v);
+  }
+  const auto& positions = topology.mesh.positions;
+  const double tolerance = ctx.seg.tolerance * ctx.options.tuning.node_rejoin_factor;
+  std::vector<std::int32_t> index(count, -1);
+  int kept = 0;
+  for (int p = 0; p < count; ++p) {
+    const std::int32_t q = parents[p];
+    bool together = q != p && !members[p].empty();
+    for (std::size_t f = 0; together && f < analysis->tracks.size(); ++f) {
+      const auto& frame = analysis->tracks[f];
+      double squared = 0;
+      for (std::uint32_t v : members[p]) {
+        squared += (frame[p].Apply(positions[v]) - frame[q].Apply(positions[v])).squaredNorm();
+      }
+      together = squared <= tolerance * tolerance * double(members[p].size());
+    }
+    if (!together) index[p] = kept++;
+  }
+  if (kept == count) return;
+  for (std::int32_t& l : segmented->labels) {
+    if (l >= 0) l = index[l] >= 0 ? index[l] : index[parents[l]];
+  }
+  for (auto& frame : analysis->tracks) {
+    std::vector<RigidTransform> rejoined;
+    for (int p = 0; p < count; ++p) {
+      if (index[p] >= 0) rejoined.push_back(frame[p]);
+    }
+    frame = std::move(rejoined);
+  }
+  std::vector<std::int32_t> kept_parents;
+  for (int p = 0; p < count; ++p) {
+    if (index[p] >= 0) kept_parents.push_back(index[parents[p]]);
+  }
+  segmented->parents = std::move(kept_parents);
+  segmented->segment_count = kept;
+  analysis->summary.patches -= count - kept;
+  std::vector<std::uint8_t> surface = std::move(analysis->motion.surface_triangles);
+  analysis->motion = BlendWeightsFromLabels(topology, segmented->labels, kept, /*smoothing=*/4,
+                                            segmented->soft_from);
+  analysis->motion.surface_triangles = std::move(surface);
+}
+
+/// The tracks of a frame of a key group from its previous frames (`tracks`, the last is the
+/// frame before): the joint graph tracker's (tuning.graph_tracking) or each segment's alone.
+std::vector<RigidTransform> TrackFrame(const EncodeContext& ctx, const BaseTopology& topology,
+                                       const SegmentedMotion& segmented,
+                                       const GraphTracker* tracker, const FrameProxy& proxy,
+                                       std::span<const std::vector<RigidTransform>> tracks) {
+  const std::vector<RigidTransform>& previous = tracks.back();
+  if (!proxy.target) return previous;
+  if (tracker == nullptr) {
+    return TrackSegments(topology, segmented.labels, segmented.segment_count, *proxy.target,
+                         previous, ctx.seg);
+  }
+  const std::span<const RigidTransform> before =
+      tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
+                         : std::span<const RigidTransform>();
+  return tracker->Track(*proxy.target, proxy.points, previous, before);
+}
+
+/// The graph tracker of a segmentation's pieces, or nothing when tuning.graph_tracking is off.
+std::unique_ptr<GraphTracker> MakeTracker(const EncodeContext& ctx, const BaseTopology& topology,
+                                          const SegmentedMotion& segmented) {
+  if (!ctx.options.tuning.graph_tracking) return nullptr;
+  return std::make_unique<GraphTracker>(topology, segmented.labels, segmented.segment_count,
+                                        ctx.seg, ctx.track);
+}
+
 /// The motion of a key group's base over frames [start, stop): every `stride`-th frame
 /// segmented jointly (proxies cached), the others tracked from the previous frame. Fills the
 /// analysis' motion, tracks (stop - start of them) and segment figures.
@@ -231,31 +368,34 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
   }
   analysis->seconds_proxies += SecondsSince(stage_start);
   std::vector<const ShootingTarget*> targets;
-  for (int t : analysed) targets.push_back((*proxies)[t].target.get());
+  std::vector<std::span<const Eigen::Vector3f>> points;
+  for (int t : analysed) {
+    targets.push_back((*proxies)[t].target.get());
+    points.push_back((*proxies)[t].points);
+  }
   MESHVID_ASSIGN_OR_RETURN(SegmentedMotion segmented,
-                           SegmentFrames(ctx, topology, targets, &analysis->summary));
+                           SegmentFrames(ctx, topology, targets, points, &analysis->summary));
   std::vector<std::vector<RigidTransform>>& tracks = analysis->tracks;
   tracks.assign(stop - start, {});
   for (std::size_t k = 0; k < analysed.size(); ++k) {
     tracks[analysed[k] - start] = segmented.tracks[k];
   }
-  // Frames between analysed frames: tracked from the previous frame with the fixed segments.
+  // Frames between analysed frames: tracked from the previous frames with the fixed pieces.
+  const std::unique_ptr<GraphTracker> tracker =
+      stride > 1 ? MakeTracker(ctx, topology, segmented) : nullptr;
   for (int t = start + 1; stride > 1 && t < stop; ++t) {
     if ((t - start) % stride == 0) continue;
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
-    const auto& previous = tracks[t - start - 1];
-    tracks[t - start] = proxy.target ? TrackSegments(topology, segmented.labels,
-                                                     segmented.segment_count, *proxy.target,
-                                                     previous, ctx.seg)
-                                     : previous;
+    tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
+                                   std::span(tracks.data(), std::size_t(t - start)));
   }
   SmoothTracks(options.tuning.track_smoothing, &tracks);
   analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
                                             segmented.segment_count,
                                             /*smoothing=*/4,
-                                            /*soft_from=*/analysis->summary.segments);
+                                            /*soft_from=*/segmented.soft_from);
   std::vector<std::vector<RigidTransform>> analysed_tracks;
   for (int t : analysed) analysed_tracks.push_back(tracks[t - start]);
   MarkSurface(ctx, base, targets, analysed_tracks, &analysis->motion, &analysis->summary);
@@ -324,9 +464,11 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   if (!may_cut) {
     // Every remaining frame, or `window` of them spread evenly, segmented jointly.
     const int stride = (ctx.end - start + options.tuning.window - 1) / options.tuning.window;
-    MESHVID_RETURN_IF_ERROR(
-        SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis).status());
+    MESHVID_ASSIGN_OR_RETURN(
+        SegmentedMotion segmented,
+        SegmentKeyGroup(ctx, topology, start, ctx.end, stride, &proxies, &analysis));
     summary.frames = ctx.end - start;
+    RejoinNodes(ctx, topology, &segmented, &analysis);
     return analysis;
   }
 
@@ -346,6 +488,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     return true;
   };
   SegmentedMotion segmented;
+  std::unique_ptr<GraphTracker> tracker;
   int stop = start;
   int kept = start;
   const int first_window = previous_frames > 0
@@ -364,12 +507,21 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.worst_unexplained = key_fit.unexplained_share;
     summary.cut_unexplained = -1;
+    tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;
     for (int t = start + 1; t < stop; ++t) {
-      if (!explained(t, proxies[t].points)) {
-        kept = t;
-        break;
+      if (explained(t, proxies[t].points)) continue;
+      // The segmentation lost the frame: tracked again from the frames before it.
+      if (tracker) {
+        tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t],
+                                       std::span(tracks.data(), std::size_t(t - start)));
+        if (explained(t, proxies[t].points)) {
+          summary.cut_unexplained = -1;
+          continue;
+        }
       }
+      kept = t;
+      break;
     }
   }
   // Past the analysed frames: tracked frame by frame while the base explains the data.
@@ -378,13 +530,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction));
-    const FrameProxy& proxy = proxies[t];
-    const std::vector<RigidTransform> previous = tracks.back();
-    tracks.push_back(proxy.target ? TrackSegments(topology, segmented.labels,
-                                                  segmented.segment_count, *proxy.target,
-                                                  previous, ctx.seg)
-                                  : previous);
-    if (!explained(t, proxy.points)) {
+    tracks.push_back(TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t], tracks));
+    if (!explained(t, proxies[t].points)) {
       tracks.pop_back();
       break;
     }
@@ -394,6 +541,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   proxies.erase(proxies.begin(), proxies.lower_bound(kept));
   tracks.resize(kept - start);
   summary.frames = kept - start;
+  RejoinNodes(ctx, topology, &segmented, &analysis);
   return analysis;
 }
 

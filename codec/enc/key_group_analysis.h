@@ -15,6 +15,7 @@
 #include "codec/common/motion.h"
 #include "codec/common/progress.h"
 #include "codec/enc/encoder.h"
+#include "codec/enc/graph_tracking.h"
 #include "codec/enc/normal_shooting.h"
 #include "codec/enc/segmentation.h"
 #include "format/status.h"
@@ -30,7 +31,7 @@ double SecondsSince(Clock::time_point start);
 struct Lengths {
   float scale = 1;
   float max_distance = 0, tolerance = 0, detail_max_distance = 0, outlier_distance = 0,
-        base_max_error = 0;
+        base_max_error = 0, reacquire_max_distance = 0;
 };
 
 /// A frame's views decimated into one correspondence target, and the target's vertices (the
@@ -58,6 +59,7 @@ struct EncodeContext {
   Lengths lengths;
   SegmentationOptions seg;
   int end = 0;  ///< one past the last frame encoded
+  GraphTrackingOptions track;  ///< the frame-to-frame tracker's constants
 };
 
 /// The error a cancelled progress callback ends an encode with.

@@ -8,10 +8,8 @@
 #include <string>
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
-#include <tbb/parallel_for.h>
 
-#include "codec/enc/rigid_step.h"
+#include "codec/enc/graph_tracking.h"
 
 namespace meshvid {
 namespace {
@@ -43,113 +41,6 @@ void RelaxFrom(const TriangleMesh& base, const std::vector<std::vector<std::uint
         queue.push({next, w});
       }
     }
-  }
-}
-
-/// Weight of keeping each patch where it was predicted, per unit of its size: small, so it
-/// only decides what neither data nor neighbours do.
-constexpr double kPriorWeight = 0.01;
-
-/// A base edge between two different pieces, at least one of them a patch.
-struct Seam {
-  std::uint32_t u, w;
-  std::int32_t a, b;
-};
-
-/// Everything about the patches that does not change between frames.
-struct PatchLayout {
-  int fixed_count = 0, patch_count = 0;
-  std::vector<std::vector<std::uint32_t>> members;  ///< per patch
-  std::vector<Eigen::Vector3f> centres;             ///< rest centroid per patch
-  std::vector<double> radii;                        ///< rest RMS radius per patch
-  std::vector<Seam> seams;
-  std::vector<Eigen::Vector3f> normals;             ///< rest vertex normals
-};
-
-/// One joint Gauss-Newton step of every patch's transform in `frame` (indices fixed_count..):
-/// point-to-plane data terms on hits within `tolerance`, seam agreement, a weak prior.
-void JointStep(const TriangleMesh& base, const PatchLayout& layout, const ShootingTarget& target,
-               const ShotLimits& shot, float tolerance, float stiffness,
-               std::vector<RigidTransform>* frame) {
-  const int np = layout.patch_count;
-  const int fixed = layout.fixed_count;
-  std::vector<Eigen::Vector3d> centres(np);
-  for (int p = 0; p < np; ++p) {
-    centres[p] = (*frame)[fixed + p].Apply(layout.centres[p]).cast<double>();
-  }
-  // Per patch: its 6x6 block and right-hand side from its data.
-  std::vector<Matrix6d> diagonal(np, Matrix6d::Zero());
-  std::vector<Vector6d> rhs(np, Vector6d::Zero());
-  tbb::parallel_for(0, np, [&](int p) {
-    const RigidTransform& t = (*frame)[fixed + p];
-    for (std::uint32_t v : layout.members[p]) {
-      const Eigen::Vector3f origin = t.Apply(base.positions[v]);
-      const Eigen::Vector3f direction = t.rotation * layout.normals[v];
-      const ShotHit hit = target.ShootHit(origin, direction, shot);
-      if (std::isnan(hit.distance) || std::abs(hit.distance) >= tolerance) continue;
-      const Eigen::Vector3d x = origin.cast<double>();
-      AddCorrespondence(x - centres[p], hit.normal.cast<double>(),
-                        x - (origin + hit.distance * direction).cast<double>(), &diagonal[p],
-                        &rhs[p]);
-    }
-    Vector6d prior;
-    const double r2 = layout.radii[p] * layout.radii[p];
-    prior << r2, r2, r2, 1, 1, 1;
-    diagonal[p].diagonal() += kPriorWeight * double(layout.members[p].size()) * prior;
-  });
-  // Seams: the two pieces should put each seam vertex at the same place.
-  std::vector<Eigen::Triplet<double>> triplets;
-  const double w = stiffness;
-  for (const Seam& seam : layout.seams) {
-    const RigidTransform& ta = (*frame)[seam.a];
-    const RigidTransform& tb = (*frame)[seam.b];
-    const int pa = seam.a - fixed, pb = seam.b - fixed;  // negative: a fixed segment
-    for (std::uint32_t v : {seam.u, seam.w}) {
-      const Eigen::Vector3d xa = ta.Apply(base.positions[v]).cast<double>();
-      const Eigen::Vector3d xb = tb.Apply(base.positions[v]).cast<double>();
-      const Eigen::Vector3d r = xa - xb;
-      // The residual xa - xb: + the point's derivative for a, - for b.
-      const Eigen::Matrix<double, 3, 6> ja =
-          pa >= 0 ? PointJacobian(xa - centres[pa]) : Eigen::Matrix<double, 3, 6>::Zero();
-      const Eigen::Matrix<double, 3, 6> jb =
-          pb >= 0 ? Eigen::Matrix<double, 3, 6>(-PointJacobian(xb - centres[pb]))
-                  : Eigen::Matrix<double, 3, 6>::Zero();
-      if (pa >= 0) {
-        diagonal[pa] += w * ja.transpose() * ja;
-        rhs[pa] += w * ja.transpose() * r;
-      }
-      if (pb >= 0) {
-        diagonal[pb] += w * jb.transpose() * jb;
-        rhs[pb] += w * jb.transpose() * r;
-      }
-      if (pa >= 0 && pb >= 0) {
-        const Matrix6d off = w * ja.transpose() * jb;
-        for (int i = 0; i < 6; ++i) {
-          for (int k = 0; k < 6; ++k) {
-            triplets.emplace_back(6 * pa + i, 6 * pb + k, off(i, k));
-            triplets.emplace_back(6 * pb + k, 6 * pa + i, off(i, k));
-          }
-        }
-      }
-    }
-  }
-  Eigen::VectorXd b(6 * np);
-  for (int p = 0; p < np; ++p) {
-    DampRigidBlock(&diagonal[p]);
-    for (int i = 0; i < 6; ++i) {
-      for (int k = 0; k < 6; ++k) triplets.emplace_back(6 * p + i, 6 * p + k, diagonal[p](i, k));
-    }
-    b.segment<6>(6 * p) = -rhs[p];
-  }
-  Eigen::SparseMatrix<double> a(6 * np, 6 * np);
-  a.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
-  if (solver.info() != Eigen::Success) return;
-  const Eigen::VectorXd x = solver.solve(b);
-  if (!x.allFinite()) return;
-  for (int p = 0; p < np; ++p) {
-    RigidTransform& t = (*frame)[fixed + p];
-    t = ApplyIncrement(t, x.segment<6>(6 * p), centres[p]);
   }
 }
 
@@ -239,43 +130,17 @@ Status TrackPatches(const BaseTopology& topology, const std::vector<std::int32_t
                     const SegmentationOptions& seg, const PatchTrackingOptions& options,
                     std::vector<std::vector<RigidTransform>>* transforms,
                     const ProgressCallback& progress) {
-  const TriangleMesh& base = topology.mesh;
   if (transforms->size() != targets.size()) {
     return InvalidArgumentError("patch tracking: " + std::to_string(transforms->size()) +
                                 " frames of transforms for " + std::to_string(targets.size()) +
                                 " targets");
   }
   for (auto& frame : *transforms) frame.resize(total_count);
-  PatchLayout layout;
-  layout.fixed_count = fixed_count;
-  layout.patch_count = total_count - fixed_count;
-  if (layout.patch_count <= 0 || targets.empty()) return Status::Ok();
-  layout.members.resize(layout.patch_count);
-  for (std::uint32_t v = 0; v < labels.size(); ++v) {
-    if (labels[v] >= fixed_count && labels[v] < total_count) {
-      layout.members[labels[v] - fixed_count].push_back(v);
-    }
-  }
-  for (const auto& members : layout.members) {
-    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-    for (std::uint32_t v : members) centre += base.positions[v];
-    centre /= float(std::max<std::size_t>(1, members.size()));
-    double spread = 0;
-    for (std::uint32_t v : members) spread += (base.positions[v] - centre).squaredNorm();
-    layout.centres.push_back(centre);
-    layout.radii.push_back(std::sqrt(spread / double(std::max<std::size_t>(1, members.size()))));
-  }
-  const auto& neighbours = topology.neighbours;
-  for (std::uint32_t u = 0; u < neighbours.size(); ++u) {
-    for (std::uint32_t w : neighbours[u]) {
-      const std::int32_t a = labels[u], b = labels[w];
-      if (w <= u || a < 0 || b < 0 || a == b) continue;
-      if (a < fixed_count && b < fixed_count) continue;
-      layout.seams.push_back({u, w, a, b});
-    }
-  }
-  layout.normals = topology.normals;
-
+  if (total_count <= fixed_count || targets.empty()) return Status::Ok();
+  const PieceGraph graph = BuildPieceGraph(topology, labels, fixed_count, total_count);
+  JointStepSettings settings;
+  settings.shot = seg.shot;
+  settings.stiffness = options.stiffness;
   const int frames = static_cast<int>(targets.size());
   for (int k = 1; k < frames; ++k) {
     if (!ReportProgress(progress, "patch tracking", k, frames)) {
@@ -287,18 +152,7 @@ Status TrackPatches(const BaseTopology& topology, const std::vector<std::int32_t
                        : PredictConstantVelocity((*transforms)[k - 2][s], (*transforms)[k - 1][s]);
     }
     if (targets[k] == nullptr) continue;
-    // Coarse to fine: halving from the search distance, then the method's schedule.
-    const float fine_start = seg.tolerance * std::max(1.0f, seg.initial_tolerance_factor);
-    float tol = fine_start;
-    while (tol * 2 < seg.shot.max_distance) tol *= 2;
-    for (;;) {
-      for (int it = 0; it < std::max(1, seg.icp_iterations); ++it) {
-        JointStep(base, layout, *targets[k], seg.shot, tol, options.stiffness, &frame);
-      }
-      if (tol <= seg.tolerance) break;
-      tol = tol > fine_start ? std::max(tol * 0.5f, fine_start)
-                             : std::max(tol * seg.tolerance_shrink, seg.tolerance);
-    }
+    SolveJointly(topology, graph, *targets[k], seg, settings, /*fine_only=*/false, &frame);
   }
   return Status::Ok();
 }

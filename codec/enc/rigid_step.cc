@@ -21,14 +21,14 @@ Eigen::Matrix<double, 3, 6> PointJacobian(const Eigen::Vector3d& q) {
 }
 
 void AddCorrespondence(const Eigen::Vector3d& q, const Eigen::Vector3d& n,
-                       const Eigen::Vector3d& r, Matrix6d* a, Vector6d* b) {
+                       const Eigen::Vector3d& r, Matrix6d* a, Vector6d* b, double weight) {
   Vector6d j;
   j << q.cross(n), n;
-  *a += j * j.transpose();
-  *b += j * n.dot(r);
+  *a += weight * j * j.transpose();
+  *b += weight * j * n.dot(r);
   const Eigen::Matrix<double, 3, 6> jp = PointJacobian(q);
-  *a += kPointWeight * jp.transpose() * jp;
-  *b += kPointWeight * jp.transpose() * r;
+  *a += weight * kPointWeight * jp.transpose() * jp;
+  *b += weight * kPointWeight * jp.transpose() * r;
 }
 
 void DampRigidBlock(Matrix6d* a) {

@@ -22,9 +22,10 @@ Eigen::Matrix<double, 3, 6> PointJacobian(const Eigen::Vector3d& q);
 /// the posed point to the data's tangent plane (normal n; Chen & Medioni, whose normal
 /// shooting gives the correspondences), plus a small point-to-point term that fixes the
 /// directions a plane leaves free. q: the posed point relative to the centre; r: the posed
-/// point minus its correspondence.
+/// point minus its correspondence; `weight` scales both terms (a robust weight).
 void AddCorrespondence(const Eigen::Vector3d& q, const Eigen::Vector3d& n,
-                       const Eigen::Vector3d& r, Matrix6d* a, Vector6d* b);
+                       const Eigen::Vector3d& r, Matrix6d* a, Vector6d* b,
+                       double weight = 1.0);
 
 /// Levenberg-Marquardt damping of one 6x6 block, relative to its mean diagonal: few or
 /// nearly collinear points leave directions almost free; damping keeps the step there small

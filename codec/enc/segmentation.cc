@@ -630,4 +630,15 @@ std::vector<RigidTransform> TrackSegments(const BaseTopology& base,
   return result;
 }
 
+int SolveSegment(const BaseTopology& base, std::span<const std::uint32_t> members,
+                 const ShootingTarget& target, const SegmentationOptions& options,
+                 RigidTransform* transform) {
+  if (members.size() < 3) return -1;
+  const BaseFrame frame{base.mesh.positions, base.normals};
+  const RigidTransform start = *transform;
+  const std::optional<Agreement> agreement = SolveFrame(
+      frame, members, target, options, options.initial_tolerance_factor, start, transform);
+  return agreement ? static_cast<int>(agreement->agree) : -1;
+}
+
 }  // namespace meshvid

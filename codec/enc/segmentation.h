@@ -71,6 +71,13 @@ std::vector<RigidTransform> TrackSegments(const BaseTopology& base,
                                           std::span<const RigidTransform> initial,
                                           const SegmentationOptions& options);
 
+/// Solves one piece's transform in one frame from `*transform` alone, as TrackSegments does
+/// for each segment (a fine and a coarse search; believable relative to the start pose).
+/// Returns how many members agree within options.tolerance, or -1 (leaving `*transform` as
+/// it was) when neither search is believable.
+int SolveSegment(const BaseTopology& base, std::span<const std::uint32_t> members,
+                 const ShootingTarget& target, const SegmentationOptions& options,
+                 RigidTransform* transform);
 
 }  // namespace meshvid
 

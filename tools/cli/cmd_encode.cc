@@ -64,6 +64,14 @@ Status WithFlagNames(const Status& status) {
       {"track_smoothing", "--smoothing"},
       {"patch_vertices", "--patch-vertices"},
       {"patch_stiffness", "--stiffness"},
+      {"graph_node_vertices", "--node-vertices"},
+      {"node_rejoin_factor", "--node-rejoin"},
+      {"track_robust_scale", "--track-robust"},
+      {"track_prior_weight", "--track-prior"},
+      {"reacquire_below", "--reacquire-below"},
+      {"reacquire_gain", "--reacquire-gain"},
+      {"reacquire_min_vertices", "--reacquire-min-vertices"},
+      {"reacquire_max_distance", "--reacquire-distance"},
       {"proxy_fraction", "--proxy-fraction"},
       {"max_distance", "--max-distance"},
       {"max_angle_degrees", "--max-angle"},
@@ -337,6 +345,43 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--stiffness", o.tuning.patch_stiffness,
                   "Weight of neighbouring patches and segments agreeing where they meet, "
                   "against the data")
+      ->capture_default_str();
+  cmd->add_option("--graph-tracking", o.tuning.graph_tracking,
+                  "Track frames with the joint piece graph (segments and patches solved "
+                  "together, lost pieces searched for again); false: each segment alone")
+      ->capture_default_str();
+  cmd->add_option("--node-vertices", o.tuning.graph_node_vertices,
+                  "Pieces larger than this are split into graph nodes of about this many "
+                  "vertices for the tracking (0: not split)")
+      ->capture_default_str();
+  cmd->add_option("--node-rejoin", o.tuning.node_rejoin_factor,
+                  "A graph node joins its piece again when the two put it within this x the "
+                  "tolerance (RMS) in every frame of the key group")
+      ->capture_default_str();
+  cmd->add_option("--blend-nodes", o.tuning.blend_nodes,
+                  "With graph tracking, blend patches and graph nodes into their neighbours "
+                  "(false: every piece moves its vertices alone)")
+      ->capture_default_str();
+  cmd->add_option("--track-robust", o.tuning.track_robust_scale,
+                  "Geman-McClure scale of the tracker's residuals, x the current tolerance (0: "
+                  "off)")
+      ->capture_default_str();
+  cmd->add_option("--track-prior", o.tuning.track_prior_weight,
+                  "Weight of each tracked piece staying where its step starts, per member")
+      ->capture_default_str();
+  cmd->add_option("--reacquire-below", o.tuning.reacquire_below,
+                  "Share of a piece's members agreeing with the data below which the tracker "
+                  "searches for it again (0: never)")
+      ->capture_default_str();
+  cmd->add_option("--reacquire-gain", o.tuning.reacquire_gain,
+                  "Share more of a piece's members that must agree with a re-acquired pose")
+      ->capture_default_str();
+  cmd->add_option("--reacquire-min-vertices", o.tuning.reacquire_min_vertices,
+                  "Smallest piece searched for again alone")
+      ->capture_default_str();
+  cmd->add_option("--reacquire-distance", o.tuning.reacquire_max_distance,
+                  "Widest closest-point radius a lost piece is searched within (0: 25% of the "
+                  "size)")
       ->capture_default_str();
   cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,
                   "Share of each view's vertices kept in its correspondence proxy")

@@ -1,0 +1,215 @@
+// The frame-to-frame piece-graph tracker (codec/enc/graph_tracking.h): a part displaced by a
+// fifth of the object between two frames is re-acquired, and a bending cylinder turning 10
+// degrees a frame is followed by one key group over 60 frames.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <vector>
+
+#include "codec/dec/mvid_decoder.h"
+#include "codec/enc/encoder.h"
+#include "codec/enc/graph_tracking.h"
+#include "tests/analytic_mvid.h"
+#include "tests/test_util.h"
+#include "tools/eval/surface_distance.h"
+
+namespace meshvid {
+namespace {
+
+constexpr float kPi = 3.14159265f;
+
+/// An ellipsoid with the given radii about `centre`, without normals.
+TriangleMesh Ellipsoid(int rings, const Eigen::Vector3f& radii, const Eigen::Vector3f& centre) {
+  TriangleMesh mesh = testing::LatLongSphere(rings, 2 * rings);
+  for (auto& p : mesh.positions) p = p.cwiseProduct(radii) + centre;
+  mesh.normals.clear();
+  return mesh;
+}
+
+/// A body and, beside it (not touching), a part; the part shifted by `shift`.
+TriangleMesh BodyAndPart(int rings, const Eigen::Vector3f& shift) {
+  TriangleMesh mesh = Ellipsoid(rings, {0.6f, 0.25f, 0.25f}, Eigen::Vector3f::Zero());
+  AppendMesh(Ellipsoid(rings, {0.25f, 0.15f, 0.1f}, Eigen::Vector3f(1.1f, 0, 0) + shift), &mesh);
+  return mesh;
+}
+
+/// Root mean square distance between the points `t` and `truth` put the vertices at.
+float RmsApart(const TriangleMesh& mesh, std::size_t first, std::size_t end,
+               const RigidTransform& t, const RigidTransform& truth) {
+  double sum = 0;
+  for (std::size_t v = first; v < end; ++v) {
+    sum += (t.Apply(mesh.positions[v]) - truth.Apply(mesh.positions[v])).squaredNorm();
+  }
+  return static_cast<float>(std::sqrt(sum / double(end - first)));
+}
+
+SegmentationOptions TrackingSegmentationOptions(float diagonal) {
+  SegmentationOptions seg;  // the encoder's defaults: fractions of the diagonal
+  seg.tolerance = 0.005f * diagonal;
+  seg.shot.max_distance = 0.08f * diagonal;
+  seg.shot.min_abs_cos = 0.5f;
+  return seg;
+}
+
+TEST(GraphTracking, ReacquiresAPartDisplacedByAFifthOfTheObject) {
+  const TriangleMesh base = BodyAndPart(24, Eigen::Vector3f::Zero());
+  const std::size_t body = base.vertex_count() / 2;
+  const float diagonal = BoundingBox(base).diagonal().norm();  // 2.06
+  // Between two frames the part moves a fifth of the object's size (its 1.95 length) up and
+  // towards the viewer, 0.39 in all: nearly five times the normal-shooting search distance.
+  RigidTransform truth;
+  truth.translation = Eigen::Vector3f(0, 0.3f, 0.25f);
+  const TriangleMesh data = BodyAndPart(40, truth.translation);
+  auto target = ShootingTarget::Create(data);
+  ASSERT_TRUE(target.ok()) << target.status().ToString();
+  std::vector<std::int32_t> labels(base.vertex_count(), 0);
+  for (std::size_t v = body; v < labels.size(); ++v) labels[v] = 1;
+  const BaseTopology topology(base);
+  const SegmentationOptions seg = TrackingSegmentationOptions(diagonal);
+  GraphTrackingOptions options;
+  options.reacquire_max_distance = 0.25f * diagonal;
+  const std::vector<RigidTransform> still(2);
+  const GraphTracker tracker(topology, labels, 2, seg, options);
+  GraphTrackStats stats;
+  const std::vector<RigidTransform> tracked =
+      tracker.Track(**target, data.positions, still, still, {}, &stats);
+  ASSERT_EQ(tracked.size(), 2u);
+  EXPECT_EQ(stats.reacquired, 1);
+  EXPECT_LT(RmsApart(base, body, base.vertex_count(), tracked[1], truth), seg.tolerance);
+  EXPECT_LT(RmsApart(base, 0, body, tracked[0], RigidTransform{}), 0.2f * seg.tolerance);
+  // Its members agree with the data again.
+  EXPECT_GT(tracker.Agreeing(1, **target, tracked[1]), 0.9 * double(base.vertex_count() - body));
+  // Without the search, the joint solve alone does not find it.
+  options.reacquire_below = 0;
+  const GraphTracker joint_only(topology, labels, 2, seg, options);
+  const std::vector<RigidTransform> lost = joint_only.Track(**target, data.positions, still, still);
+  EXPECT_GT(RmsApart(base, body, base.vertex_count(), lost[1], truth), 5 * seg.tolerance);
+}
+
+TEST(GraphTracking, SplitsLargePiecesIntoConnectedNodes) {
+  const TriangleMesh sphere = testing::LatLongSphere(16, 32);
+  const BaseTopology topology(sphere);
+  // Piece 0: the upper half; piece 1: the lower half less a small cap, piece 2.
+  std::vector<std::int32_t> labels(sphere.vertex_count());
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    labels[v] = sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2;
+  }
+  std::vector<std::int32_t> parents;
+  const int count = SplitIntoNodes(topology, 3, 40, 64, &labels, &parents);
+  ASSERT_EQ(parents.size(), std::size_t(count));
+  EXPECT_GE(count, 3 + 8);
+  std::vector<int> sizes(count, 0);
+  for (std::int32_t l : labels) ++sizes[l];
+  for (int p = 0; p < count; ++p) {
+    EXPECT_GE(sizes[p], 3) << "node " << p;
+    EXPECT_LE(sizes[p], 3 * 40) << "node " << p;
+  }
+  // Every node lies within the piece it came from (the halves stay apart).
+  for (std::size_t v = 0; v < labels.size(); ++v) {
+    const int piece = parents[labels[v]];
+    EXPECT_EQ(piece, sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2);
+  }
+  // The budget holds: at most 5 pieces.
+  std::vector<std::int32_t> few(sphere.vertex_count(), 0);
+  EXPECT_EQ(SplitIntoNodes(topology, 1, 40, 5, &few, &parents), 5);
+}
+
+/// A capped tube along x (length 2, radius 0.2) bent at its middle: the right half turned by
+/// `angle` about the z axis, the left half still, the cross-sections between x = -0.3 and 0.3
+/// turned by a smooth share of it (an elbow).
+TriangleMesh BentCylinder(int rings, int around, float angle) {
+  TriangleMesh mesh;
+  const float length = 2, radius = 0.2f, elbow = 0.3f;
+  auto place = [&](float x, float y, float z) {
+    const float s = std::clamp((x + elbow) / (2 * elbow), 0.0f, 1.0f);
+    const Eigen::AngleAxisf turn(angle * s * s * (3 - 2 * s), Eigen::Vector3f::UnitZ());
+    mesh.positions.push_back(turn * Eigen::Vector3f(x, y, z));
+  };
+  for (int i = 0; i <= rings; ++i) {
+    const float x = -length / 2 + length * float(i) / float(rings);
+    for (int j = 0; j < around; ++j) {
+      const float a = 2 * kPi * float(j) / float(around);
+      place(x, radius * std::cos(a), radius * std::sin(a));
+    }
+  }
+  const auto ring = [&](int i, int j) { return std::uint32_t(i * around + (j % around)); };
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < around; ++j) {
+      mesh.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
+      mesh.triangles.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
+    }
+  }
+  // Caps: a fan about each end's centre.
+  const auto left = std::uint32_t(mesh.positions.size());
+  place(-length / 2, 0, 0);
+  const auto right = std::uint32_t(mesh.positions.size());
+  place(length / 2, 0, 0);
+  for (int j = 0; j < around; ++j) {
+    mesh.triangles.push_back({left, ring(0, j + 1), ring(0, j)});
+    mesh.triangles.push_back({right, ring(rings, j), ring(rings, j + 1)});
+  }
+  return mesh;
+}
+
+/// The right half's turn at frame f: 10 degrees a frame, swinging 0, +60, -60, 0, ...
+float SwingAngle(int frame) {
+  const int step = frame % 24;  // 6 frames up, 12 down, 6 up
+  const int tenths = step <= 6 ? step : step <= 18 ? 12 - step : step - 24;
+  return float(tenths) * 10 * kPi / 180;
+}
+
+// Disabled: the target, not met yet. Measured on this branch: 55 key groups of 1-5
+// frames. The base fused from a key frame leaves 4-8% of that frame's own points
+// unexplained and has surface 0.11-0.35 from the data (farthest_from_data), and at frame 1
+// the graph tracker's re-track of the segmentation's pieces leaves 66% of the points
+// unexplained. On the analytic base (the same tracker, 12 nodes of 48 vertices, all free)
+// the RMS distance to the data is 0.3% of the diagonal at frame 1, 1.7% at frame 2 and 5%
+// at 60 degrees with the default stiffness of 1; 0.1%, 0.2% and 1.7% with a stiffness of 0.1.
+TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
+  const int frame_count = 60;
+  std::vector<TriangleMesh> frames;
+  std::vector<std::vector<TriangleMesh>> views;
+  for (int f = 0; f < frame_count; ++f) {
+    frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
+    views.push_back({frames.back()});
+  }
+  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
+  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  EncoderOptions options;
+  options.base_vertices = 600;
+  options.codec = VideoCodec::kFfv1;
+  options.gof_size = 4;
+  // One view of 7,800 vertices: its proxy (5% by default) would be coarser than the base.
+  options.tuning.proxy_fraction = 0.25;
+  std::vector<std::uint8_t> bytes;
+  StatusOr<EncodeSummary> summary = EncodeCapture(
+      *source,
+      [&](std::span<const std::uint8_t> b) {
+        bytes.insert(bytes.end(), b.begin(), b.end());
+        return Status::Ok();
+      },
+      options);
+  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
+  ASSERT_EQ(summary->key_groups.size(), 1u);
+  EXPECT_EQ(summary->key_groups[0].frames, frame_count);
+  // Every frame decodes within the segmentation's tolerance (0.5% of the diagonal) of the
+  // data, RMS over the decoded vertices.
+  const float tolerance = float(summary->tolerance);
+  auto decoder = MvidDecoder::OpenMemory(bytes);
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  for (int f = 0; f < frame_count; ++f) {
+    auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
+    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
+    auto data = SurfaceDistance::Build(frames[f]);
+    ASSERT_TRUE(data.ok()) << data.status().ToString();
+    double sum = 0;
+    for (const Eigen::Vector3f& p : mesh->positions) sum += std::pow((*data)->Distance(p), 2);
+    EXPECT_LT(std::sqrt(sum / double(mesh->positions.size())), tolerance) << "frame " << f;
+  }
+}
+
+}  // namespace
+}  // namespace meshvid

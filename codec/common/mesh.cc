@@ -162,8 +162,9 @@ std::size_t SplitNonManifoldVertices(TriangleMesh* mesh) {
       for (std::uint32_t j = i + 1; j < count; ++j) {
         const Triangle& b = mesh->triangles[corners[begin + j] / 3];
         const int cb = corners[begin + j] % 3;
-        const bool shared = a[(ca + 1) % 3] == b[(cb + 1) % 3] || a[(ca + 1) % 3] == b[(cb + 2) % 3] ||
-                            a[(ca + 2) % 3] == b[(cb + 1) % 3] || a[(ca + 2) % 3] == b[(cb + 2) % 3];
+        const std::uint32_t a1 = a[(ca + 1) % 3], a2 = a[(ca + 2) % 3];
+        const std::uint32_t b1 = b[(cb + 1) % 3], b2 = b[(cb + 2) % 3];
+        const bool shared = a1 == b1 || a1 == b2 || a2 == b1 || a2 == b2;
         if (shared) fan[root(i)] = root(j);
       }
     }
@@ -174,7 +175,8 @@ std::size_t SplitNonManifoldVertices(TriangleMesh* mesh) {
       const std::uint32_t r = root(i);
       if (r == first_fan) continue;
       std::uint32_t copy = 0;
-      auto it = std::find_if(copies.begin(), copies.end(), [r](const auto& p) { return p.first == r; });
+      auto it = std::find_if(copies.begin(), copies.end(),
+                             [r](const auto& p) { return p.first == r; });
       if (it == copies.end()) {
         copy = static_cast<std::uint32_t>(mesh->positions.size());
         mesh->positions.push_back(mesh->positions[v]);

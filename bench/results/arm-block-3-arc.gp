@@ -9,20 +9,24 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.07399 45.4661
-1.47848 45.9269
-4.0273 45.8965
+9.5055 36.6406
+16.0558 36.6039
+25.9067 36.5979
+37.1104 36.5962
 EOD
 $s1 << EOD
-1.07399 45.5371
-1.47848 46.0240
-4.0273 45.9929
+2.11434 36.5418
+3.4902 36.5318
 EOD
 $s2 << EOD
-1.07399 45.5833
-1.47848 46.1069
-4.0273 46.0743
+2.11434 36.5441
+3.4902 36.5389
 EOD
-plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+$s3 << EOD
+2.11434 36.5505
+3.4902 36.5449
+EOD
+plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -9,20 +9,24 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.39863 53.2933
-0.923483 53.2987
-4.16744 52.9223
+17.6871 52.5783
+29.955 52.5455
+48.2669 52.5395
+68.9138 52.5383
 EOD
 $s1 << EOD
-0.39863 53.9185
-0.923483 53.7819
-4.16744 53.0876
+2.30487 52.5099
+3.89185 52.5096
 EOD
 $s2 << EOD
-0.39863 54.2003
-0.923483 53.9764
-4.16744 53.0710
+2.30487 52.5766
+3.89185 52.5837
 EOD
-plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+$s3 << EOD
+2.30487 52.6265
+3.89185 52.6303
+EOD
+plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

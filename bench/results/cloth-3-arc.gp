@@ -2,32 +2,29 @@
 # Run from this folder: gnuplot cloth-3-arc.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "cloth-3-arc-rd.png"
-set title "cloth, 3 views (arc), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "cloth, 3 views (arc), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
 set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-19.9427 61.7888
-35.556 63.0064
-58.7657 63.0763
-86.2662 63.0761
+22.5711 61.3710
+40.2379 62.4179
+66.7353 62.4755
+97.6672 62.4800
 EOD
 $s1 << EOD
-1.33223 54.6883
-1.53094 54.8583
-3.74913 54.9330
+1.19726 60.2844
+2.05281 60.4040
 EOD
 $s2 << EOD
-1.33223 54.7336
-1.53094 54.8575
-3.74913 54.9248
+1.19726 60.3621
+2.05281 60.4383
 EOD
 $s3 << EOD
-1.33223 54.6913
-1.53094 54.8096
-3.74913 54.8874
+1.19726 60.3675
+2.05281 60.4300
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -9,25 +9,22 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-2.04743 41.2714
-3.133 41.2614
-4.5288 41.2612
-6.04201 41.2610
+23.4375 35.2271
+40.1738 35.1937
+67.5715 35.1912
+100.891 35.1902
 EOD
 $s1 << EOD
-3.78774 40.9603
-4.1544 40.9981
-6.8575 41.0081
+2.56537 35.2907
+3.91628 35.2803
 EOD
 $s2 << EOD
-3.78774 41.0617
-4.1544 41.0966
-6.8575 41.1066
+2.56537 35.2897
+3.91628 35.2844
 EOD
 $s3 << EOD
-3.78774 41.2258
-4.1544 41.1857
-6.8575 41.1652
+2.56537 35.2952
+3.91628 35.2905
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

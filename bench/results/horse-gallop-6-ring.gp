@@ -2,62 +2,31 @@
 # Run from this folder: gnuplot horse-gallop-6-ring.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "horse-gallop-6-ring-rd.png"
-set title "horse-gallop, 6 views (ring), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "horse-gallop, 6 views (ring), 48 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.968533 60.2896
-1.48578 60.7608
-2.12633 60.7871
-2.7696 60.7905
+34.6514 54.9077
+58.3913 55.0372
+97.0611 55.0373
+143.024 55.0420
 EOD
 $s1 << EOD
-0.631887 36.3756
-1.10041 36.3855
-1.88792 36.3724
-2.65504 36.3629
+3.18136 55.5116
+5.21467 55.5345
 EOD
 $s2 << EOD
-0.631887 35.5873
-1.10041 35.5909
-1.88792 35.5310
-2.65504 35.5175
+3.18136 55.7376
+5.21467 55.8064
 EOD
 $s3 << EOD
-0.631887 35.1070
-1.10041 35.0442
-1.88792 34.9261
-2.65504 34.8841
-EOD
-$s4 << EOD
-8.43537 34.8710
-EOD
-$s5 << EOD
-0.523007 36.4792
-1.4574 36.3248
-3.07111 36.3556
-4.66474 36.3570
-EOD
-$s6 << EOD
-0.523007 35.9036
-1.4574 35.5103
-3.07111 35.4927
-4.66474 35.4980
-EOD
-$s7 << EOD
-0.523007 35.4155
-1.4574 34.9803
-3.07111 34.8593
-4.66474 34.8623
+3.18136 55.8249
+5.21467 55.8880
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -9,25 +9,22 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-0.893877 58.9005
-1.39026 59.3446
-1.98556 59.3736
-2.59332 59.3753
+27.6772 56.2142
+46.8372 56.2937
+77.7134 56.2919
+113.724 56.2880
 EOD
 $s1 << EOD
-0.906673 56.2811
-1.29483 56.8286
-3.86411 57.0117
+2.33751 56.4355
+3.93735 56.4384
 EOD
 $s2 << EOD
-0.906673 56.3196
-1.29483 56.7072
-3.86411 56.8561
+2.33751 56.6104
+3.93735 56.6582
 EOD
 $s3 << EOD
-0.906673 56.1096
-1.29483 56.4157
-3.86411 56.4826
+2.33751 56.7197
+3.93735 56.7602
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -349,6 +349,39 @@ TEST(FuseRangeMeshesTest, OpenPlaneStaysOpenWithItsBoundary) {
   for (const Vector3f& n : fused->normals) EXPECT_GT(n.z(), 0.99f);
 }
 
+// How far the farthest triangle centre of `mesh` lies outside the square |x|, |y| <= half.
+float FarthestCentreOutsideSquare(const TriangleMesh& mesh, float half) {
+  float farthest = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vector3f centre =
+        (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3;
+    const float dx = std::max(0.0f, std::abs(centre.x()) - half);
+    const float dy = std::max(0.0f, std::abs(centre.y()) - half);
+    farthest = std::max(farthest, std::hypot(dx, dy));
+  }
+  return farthest;
+}
+
+TEST(FuseRangeMeshesTest, ThinnedInputEndsNearTheDataWithMaxExtension) {
+  // The 0.4 m sheet sampled every 4 mm, fused from 400 points: a voxel of about 20 mm, which
+  // the volume's support lets run on past the sheet's edge.
+  std::vector<TriangleMesh> views = {testing::MakeGridPlane(0.4f, 100)};
+  SurfaceFusionOptions options;
+  options.max_points = 400;
+  auto coarse = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(coarse.ok()) << coarse.status().ToString();
+  options.max_extension_spacings = 1.5;
+  auto trimmed = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(trimmed.ok()) << trimmed.status().ToString();
+  const float spacing = 0.4f / 100;
+  EXPECT_GT(FarthestCentreOutsideSquare(*coarse, 0.2f), 3 * spacing);
+  EXPECT_LE(FarthestCentreOutsideSquare(*trimmed, 0.2f), 1.5f * spacing + 1e-5f);
+  EXPECT_NEAR(SurfaceArea(*trimmed), 0.16, 0.16 * 0.05);
+  EXPECT_GT(testing::BoundaryEdgeCount(*trimmed), 20u);
+  options.max_extension_spacings = -1;
+  EXPECT_EQ(FuseRangeMeshes(views, options).status().code(), StatusCode::kInvalidArgument);
+}
+
 TEST(FuseRangeMeshesTest, ThinPlateFusesAsTwoSheets) {
   // Two faces 5 mm apart, seen from above and from below, sampled every 1 mm.
   TriangleMesh top = testing::MakeGridPlane(0.1f, 100, 0.0025f);

@@ -46,6 +46,9 @@ Status CheckOptions(const EncoderOptions& o) {
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
+  if (!(o.tuning.base_max_extension >= 0) || !std::isfinite(o.tuning.base_max_extension)) {
+    return bad("tuning.base_max_extension must be finite and >= 0");
+  }
   if (o.tuning.base_fusion_points < 100) {
     return bad("tuning.base_fusion_points must be at least 100");
   }

@@ -28,6 +28,10 @@ struct EncoderTuning {
   /// a coarser voxel). A base that explains less than 75% of its own frame's points is fused
   /// again from up to SurfaceFusionOptions::max_points (150,000) and the better kept.
   std::size_t base_fusion_points = 40000;
+  /// A key frame's fused surface ends at most this many of the views' sample spacings past
+  /// the edge of the data (SurfaceFusionOptions::max_extension_spacings; 0: where the coarse
+  /// fusion's volume ends it).
+  double base_max_extension = 1.5;
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;

@@ -89,6 +89,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   }
   SurfaceFusionOptions fusion_options;
   fusion_options.max_points = fusion_points;
+  fusion_options.max_extension_spacings = options.tuning.base_max_extension;
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));
   DecimationOptions decimation;
   decimation.target_vertices = options.base_vertices;

@@ -186,6 +186,41 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
   RemoveUnreferencedVertices(mesh);
 }
 
+// Removes the triangles of `mesh` whose centre is farther than `limit` from every referenced
+// vertex of `views`.
+void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMesh* mesh) {
+  std::vector<Eigen::Vector3f> data;
+  for (const TriangleMesh& view : views) {
+    std::vector<char> used(view.positions.size(), 0);
+    for (const Triangle& t : view.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      if (used[i]) data.push_back(view.positions[i]);
+    }
+  }
+  const PointCloud cloud{data};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  std::vector<char> keep(mesh->triangles.size());
+  const float limit_squared = limit * limit;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, keep.size(), 4096), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          const Triangle& t = mesh->triangles[i];
+          const Eigen::Vector3f centre =
+              (mesh->positions[t[0]] + mesh->positions[t[1]] + mesh->positions[t[2]]) / 3;
+          std::uint32_t nearest = 0;
+          float squared = 0;
+          tree.knnSearch(centre.data(), 1, &nearest, &squared);
+          keep[i] = squared <= limit_squared;
+        }
+      });
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    if (keep[i]) mesh->triangles[next++] = mesh->triangles[i];
+  }
+  mesh->triangles.resize(next);
+  RemoveUnreferencedVertices(mesh);
+}
+
 }  // namespace
 
 StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
@@ -198,6 +233,9 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   auto finite_positive = [](double x) { return std::isfinite(x) && x > 0; };
   if (!(options.spacing >= 0) || !std::isfinite(options.spacing)) {
     return InvalidArgumentError("surface fusion spacing must be finite and >= 0");
+  }
+  if (!(options.max_extension_spacings >= 0) || !std::isfinite(options.max_extension_spacings)) {
+    return InvalidArgumentError("surface fusion max_extension_spacings must be finite and >= 0");
   }
   if (!finite_positive(options.voxel_scale) || !finite_positive(options.truncation_voxels) ||
       !finite_positive(options.support_voxels) || options.truncation_voxels > 7) {
@@ -239,9 +277,9 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     return InvalidArgumentError("surface fusion: the input points are all at one place");
   }
   // A view sampled every s holds about area / s^2 points.
+  const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
   double voxel = options.spacing;
   if (voxel == 0) {
-    const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
     voxel = options.voxel_scale * std::max<double>(sample_spacing, thinning_cell);
   }
   // Each point writes a ball of the band's radius; the band covers about area / voxel^2
@@ -272,6 +310,10 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     return CancelledError("surface fusion cancelled");
   }
   TriangleMesh result = ContourDistanceVolume(volume);
+  const double max_extension = options.max_extension_spacings * sample_spacing;
+  if (max_extension > 0 && max_extension < options.support_voxels * voxel) {
+    TrimBeyondData(views, static_cast<float>(max_extension), &result);
+  }
   if (!result.triangles.empty()) KeepMainPieces(&result, options.min_piece_share);
   if (result.triangles.empty()) {
     return InvalidArgumentError(

@@ -28,6 +28,12 @@ struct SurfaceFusionOptions {
   /// The surface ends this many voxel sizes past the edge of the data, measured across the
   /// points' normals (see DistanceVolumeSettings::support_voxels).
   double support_voxels = 1.5;
+  /// When > 0: triangles whose centre lies farther than this many of the views' sample
+  /// spacings from every view vertex are removed. Where the input was thinned, the voxel is
+  /// coarser than the samples and support_voxels alone lets the surface run that many coarse
+  /// voxels past the edge of the data; this keeps the edge where full-resolution fusion
+  /// would put it.
+  double max_extension_spacings = 0;
   /// Memory bound: the voxel size grows until the volume's estimated size fits (about 12
   /// bytes per voxel).
   std::size_t max_voxels = 20'000'000;

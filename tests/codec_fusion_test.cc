@@ -382,6 +382,40 @@ TEST(FuseRangeMeshesTest, ThinnedInputEndsNearTheDataWithMaxExtension) {
   EXPECT_EQ(FuseRangeMeshes(views, options).status().code(), StatusCode::kInvalidArgument);
 }
 
+TEST(FuseRangeMeshesTest, MaxExtensionTrimsFromTheBoundaryOnly) {
+  // The sheet with no samples within 14 mm of its centre: the coarse volume bridges the gap,
+  // and the trim, which peels from the outer edge inwards, leaves the bridge in place.
+  TriangleMesh sheet = testing::MakeGridPlane(0.4f, 100);
+  std::erase_if(sheet.triangles, [&](const Triangle& t) {
+    for (int c = 0; c < 3; ++c) {
+      if (sheet.positions[t[c]].head<2>().norm() < 0.014f) return true;
+    }
+    return false;
+  });
+  sheet.normals.clear();
+  RemoveUnreferencedVertices(&sheet);
+  std::vector<TriangleMesh> views = {sheet};
+  SurfaceFusionOptions options;
+  options.max_points = 400;
+  options.max_extension_spacings = 1.5;
+  auto trimmed = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(trimmed.ok()) << trimmed.status().ToString();
+  auto covers_centre = [](const TriangleMesh& mesh) {
+    for (const Triangle& t : mesh.triangles) {
+      const Eigen::Vector2f a = mesh.positions[t[0]].head<2>(), b = mesh.positions[t[1]].head<2>(),
+                            c = mesh.positions[t[2]].head<2>();
+      auto side = [](const Eigen::Vector2f& p, const Eigen::Vector2f& q) {
+        return p.x() * q.y() - p.y() * q.x();  // sign of the origin against the edge p -> q
+      };
+      const float s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
+      if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(covers_centre(*trimmed));
+  EXPECT_LE(FarthestCentreOutsideSquare(*trimmed, 0.2f), 1.5f * 0.004f + 1e-5f);
+}
+
 TEST(FuseRangeMeshesTest, ThinPlateFusesAsTwoSheets) {
   // Two faces 5 mm apart, seen from above and from below, sampled every 1 mm.
   TriangleMesh top = testing::MakeGridPlane(0.1f, 100, 0.0025f);

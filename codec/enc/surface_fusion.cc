@@ -187,7 +187,9 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
 }
 
 // Removes the triangles of `mesh` whose centre is farther than `limit` from every referenced
-// vertex of `views`.
+// vertex of `views`, peeling from the boundary inwards: a far triangle goes only once it
+// touches the boundary (through triangles removed before it), so sparse data inside the
+// surface makes no hole.
 void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMesh* mesh) {
   std::vector<Eigen::Vector3f> data;
   for (const TriangleMesh& view : views) {
@@ -199,23 +201,69 @@ void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMe
   }
   const PointCloud cloud{data};
   PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
-  std::vector<char> keep(mesh->triangles.size());
+  const std::size_t count = mesh->triangles.size();
+  std::vector<char> far(count);
   const float limit_squared = limit * limit;
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, keep.size(), 4096), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-          const Triangle& t = mesh->triangles[i];
-          const Eigen::Vector3f centre =
-              (mesh->positions[t[0]] + mesh->positions[t[1]] + mesh->positions[t[2]]) / 3;
-          std::uint32_t nearest = 0;
-          float squared = 0;
-          tree.knnSearch(centre.data(), 1, &nearest, &squared);
-          keep[i] = squared <= limit_squared;
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const Triangle& t = mesh->triangles[i];
+      const Eigen::Vector3f centre =
+          (mesh->positions[t[0]] + mesh->positions[t[1]] + mesh->positions[t[2]]) / 3;
+      std::uint32_t nearest = 0;
+      float squared = 0;
+      tree.knnSearch(centre.data(), 1, &nearest, &squared);
+      far[i] = squared > limit_squared;
+    }
+  });
+  // Undirected edges with their triangle, sorted so that a triangle's neighbours across an
+  // edge are adjacent entries; an edge listed once is on the boundary.
+  struct EdgeUse {
+    std::uint32_t a, b, triangle;
+    bool operator<(const EdgeUse& o) const { return a != o.a ? a < o.a : b < o.b; }
+  };
+  std::vector<EdgeUse> edges;
+  edges.reserve(3 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Triangle& t = mesh->triangles[i];
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t a = t[c], b = t[(c + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(i)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint32_t> first_of_edge(edges.size());  // index of the edge's first entry
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const bool same = e > 0 && edges[e].a == edges[e - 1].a && edges[e].b == edges[e - 1].b;
+    first_of_edge[e] = same ? first_of_edge[e - 1] : static_cast<std::uint32_t>(e);
+  }
+  std::vector<std::vector<std::uint32_t>> edges_of(count);
+  for (std::size_t e = 0; e < edges.size(); ++e) edges_of[edges[e].triangle].push_back(e);
+  auto entries = [&](std::size_t e) {
+    std::size_t end = first_of_edge[e];
+    while (end < edges.size() && first_of_edge[end] == first_of_edge[e]) ++end;
+    return std::pair<std::size_t, std::size_t>(first_of_edge[e], end);
+  };
+  std::vector<char> removed(count, 0);
+  std::vector<std::uint32_t> queue;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto [begin, end] = entries(e);
+    const std::uint32_t t = edges[e].triangle;
+    if (end - begin == 1 && far[t] && !removed[t]) removed[t] = 1, queue.push_back(t);
+  }
+  while (!queue.empty()) {
+    const std::uint32_t t = queue.back();
+    queue.pop_back();
+    for (std::uint32_t e : edges_of[t]) {
+      const auto [begin, end] = entries(e);
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t u = edges[k].triangle;
+        if (far[u] && !removed[u]) removed[u] = 1, queue.push_back(u);
+      }
+    }
+  }
   std::size_t next = 0;
-  for (std::size_t i = 0; i < keep.size(); ++i) {
-    if (keep[i]) mesh->triangles[next++] = mesh->triangles[i];
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!removed[i]) mesh->triangles[next++] = mesh->triangles[i];
   }
   mesh->triangles.resize(next);
   RemoveUnreferencedVertices(mesh);

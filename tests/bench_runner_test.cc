@@ -231,6 +231,28 @@ TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {
   EXPECT_TRUE(logged);
 }
 
+TEST(BenchRunnerTest, AFileEncodedAgainIsEvaluatedAgain) {
+  FakeBench bench;
+  ASSERT_TRUE(RunBench(bench.options, bench.events).ok());
+  // The q40 file is gone (deleted to measure a new encoder): encoded, decoded and evaluated
+  // again at every level, not kept from the record.
+  const std::string file = bench.options.work_dir + "/fake-3-arc/hevc-q40.mvid";
+  ASSERT_TRUE(std::filesystem::remove(file));
+  const std::size_t calls = bench.Calls().size();
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  const std::vector<std::string> after = bench.Calls();
+  int encodes = 0, evals = 0;
+  for (std::size_t i = calls; i < after.size(); ++i) {
+    const bool q40 = after[i].find("hevc-q40") != std::string::npos;
+    encodes += q40 && after[i].rfind("encode ", 0) == 0;
+    evals += q40 && after[i].rfind("eval ", 0) == 0;
+  }
+  EXPECT_EQ(encodes, 1);
+  EXPECT_EQ(evals, 2);  // levels 0 and 1
+  EXPECT_EQ((*records)[0].points.size(), 2u + 4u + 2u);
+}
+
 TEST(BenchRunnerTest, DrawsTheDefaultPointsWorstFrame) {
   FakeBench bench;
   bench.options.draw_stills = true;

@@ -435,6 +435,13 @@ void UpsertEncode(BenchRecord& record, const BenchEncode& encode) {
   }
 }
 
+void ErasePoints(BenchRecord& record, const std::string& method, const std::string& codec,
+                 int quality) {
+  std::erase_if(record.points, [&](const BenchPoint& p) {
+    return p.method == method && p.codec == codec && p.quality == quality;
+  });
+}
+
 bool HasMeanOfFramesPsnr(const BenchPoint& point) {
   return !std::isnan(point.d1_psnr_mean_of_frames);
 }

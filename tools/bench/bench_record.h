@@ -213,6 +213,10 @@ BenchPoint* FindPoint(BenchRecord& record, const std::string& method, const std:
 void UpsertPoint(BenchRecord& record, const BenchPoint& point);
 /// Stores `encode`, replacing the one with the same method, codec and quality.
 void UpsertEncode(BenchRecord& record, const BenchEncode& encode);
+/// Removes the points (every level) of (method, codec, quality): they measured a file that is
+/// being made again.
+void ErasePoints(BenchRecord& record, const std::string& method, const std::string& codec,
+                 int quality);
 
 /// True when the point holds the mean of its per-frame PSNRs (points recorded before it was
 /// do not).

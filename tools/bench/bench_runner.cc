@@ -498,6 +498,9 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
                                            dir_ + "/" + stem + ".summary.json",
                                            "-q"};
     encode.command = Command(args);
+    // A new file: what was measured on the old one (a resumed run whose .mvid is gone, say)
+    // is measured again.
+    ErasePoints(record, kMethodMeshvid, codec, quality);
     std::error_code ignored;
     fs::remove(file, ignored);
     const StatusOr<ChildRun> run = Child(args, stem + ".encode");

@@ -15,16 +15,16 @@ $s0 << EOD
 37.1104 36.5962
 EOD
 $s1 << EOD
-2.11434 36.5418
-3.4902 36.5318
+2.10336 36.5424
+3.47288 36.5323
 EOD
 $s2 << EOD
-2.11434 36.5441
-3.4902 36.5389
+2.10336 36.5443
+3.47288 36.5395
 EOD
 $s3 << EOD
-2.11434 36.5505
-3.4902 36.5449
+2.10336 36.5502
+3.47288 36.5453
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 68.9138 52.5383
 EOD
 $s1 << EOD
-2.30487 52.5099
-3.89185 52.5096
+2.48512 52.6107
+4.03534 52.6108
 EOD
 $s2 << EOD
-2.30487 52.5766
-3.89185 52.5837
+2.48512 52.6841
+4.03534 52.6874
 EOD
 $s3 << EOD
-2.30487 52.6265
-3.89185 52.6303
+2.48512 52.7302
+4.03534 52.7280
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

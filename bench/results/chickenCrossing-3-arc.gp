@@ -9,20 +9,24 @@ set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-2.24444 34.9889
-2.77716 34.9380
-9.49082 35.1287
+25.9259 35.0645
+42.76 35.0343
+69.0846 35.0297
+99.3843 35.0310
 EOD
 $s1 << EOD
-2.24444 35.3620
-2.77716 35.2981
-9.49082 35.5094
+5.52926 35.0997
+8.4574 35.0935
 EOD
 $s2 << EOD
-2.24444 35.7561
-2.77716 35.6245
-9.49082 35.7863
+5.52926 35.1007
+8.4574 35.0993
 EOD
-plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+$s3 << EOD
+5.52926 35.1089
+8.4574 35.1027
+EOD
+plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -15,16 +15,16 @@ $s0 << EOD
 97.6672 62.4800
 EOD
 $s1 << EOD
-1.19726 60.2844
-2.05281 60.4040
+1.32138 60.7517
+2.21192 60.8577
 EOD
 $s2 << EOD
-1.19726 60.3621
-2.05281 60.4383
+1.32138 60.8145
+2.21192 60.8962
 EOD
 $s3 << EOD
-1.19726 60.3675
-2.05281 60.4300
+1.32138 60.8136
+2.21192 60.8758
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,19 +15,16 @@ $s0 << EOD
 68.3818 38.7496
 EOD
 $s1 << EOD
-1.82927 38.7667
-2.94455 38.7603
-6.67717 38.7599
+1.86213 38.7493
+2.99308 38.7464
 EOD
 $s2 << EOD
-1.82927 38.7690
-2.94455 38.7693
-6.67717 38.7692
+1.86213 38.7527
+2.99308 38.7529
 EOD
 $s3 << EOD
-1.82927 38.7779
-2.94455 38.7783
-6.67717 38.7777
+1.86213 38.7615
+2.99308 38.7609
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -186,19 +186,11 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
   RemoveUnreferencedVertices(mesh);
 }
 
-// Removes the triangles of `mesh` whose centre is farther than `limit` from every referenced
-// vertex of `views`, peeling from the boundary inwards: a far triangle goes only once it
-// touches the boundary (through triangles removed before it), so sparse data inside the
-// surface makes no hole.
-void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMesh* mesh) {
-  std::vector<Eigen::Vector3f> data;
-  for (const TriangleMesh& view : views) {
-    std::vector<char> used(view.positions.size(), 0);
-    for (const Triangle& t : view.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
-    for (std::size_t i = 0; i < used.size(); ++i) {
-      if (used[i]) data.push_back(view.positions[i]);
-    }
-  }
+// Removes the triangles of `mesh` whose centre is farther than `limit` from every point of
+// `data`, peeling from the boundary inwards: a far triangle goes only once it touches the
+// boundary (through triangles removed before it), so sparse data inside the surface makes no
+// hole.
+void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit, TriangleMesh* mesh) {
   const PointCloud cloud{data};
   PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const std::size_t count = mesh->triangles.size();
@@ -215,8 +207,7 @@ void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMe
       far[i] = squared > limit_squared;
     }
   });
-  // Undirected edges with their triangle, sorted so that a triangle's neighbours across an
-  // edge are adjacent entries; an edge listed once is on the boundary.
+  // Undirected edges with their triangle, sorted so that the uses of one edge are adjacent.
   struct EdgeUse {
     std::uint32_t a, b, triangle;
     bool operator<(const EdgeUse& o) const { return a != o.a ? a < o.a : b < o.b; }
@@ -231,34 +222,30 @@ void TrimBeyondData(std::span<const TriangleMesh> views, float limit, TriangleMe
     }
   }
   std::sort(edges.begin(), edges.end());
-  std::vector<std::uint32_t> first_of_edge(edges.size());  // index of the edge's first entry
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const bool same = e > 0 && edges[e].a == edges[e - 1].a && edges[e].b == edges[e - 1].b;
-    first_of_edge[e] = same ? first_of_edge[e - 1] : static_cast<std::uint32_t>(e);
-  }
-  std::vector<std::vector<std::uint32_t>> edges_of(count);
-  for (std::size_t e = 0; e < edges.size(); ++e) edges_of[edges[e].triangle].push_back(e);
-  auto entries = [&](std::size_t e) {
-    std::size_t end = first_of_edge[e];
-    while (end < edges.size() && first_of_edge[end] == first_of_edge[e]) ++end;
-    return std::pair<std::size_t, std::size_t>(first_of_edge[e], end);
-  };
+  // Per triangle, the triangles across its edges; far triangles on the boundary (an edge
+  // used once) start the peeling.
+  std::vector<std::vector<std::uint32_t>> across(count);
   std::vector<char> removed(count, 0);
   std::vector<std::uint32_t> queue;
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const auto [begin, end] = entries(e);
-    const std::uint32_t t = edges[e].triangle;
+  for (std::size_t begin = 0, end = 0; begin < edges.size(); begin = end) {
+    end = begin + 1;
+    while (end < edges.size() && edges[end].a == edges[begin].a &&
+           edges[end].b == edges[begin].b) {
+      ++end;
+    }
+    const std::uint32_t t = edges[begin].triangle;
     if (end - begin == 1 && far[t] && !removed[t]) removed[t] = 1, queue.push_back(t);
+    for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t j = begin; j < end; ++j) {
+        if (i != j) across[edges[i].triangle].push_back(edges[j].triangle);
+      }
+    }
   }
   while (!queue.empty()) {
     const std::uint32_t t = queue.back();
     queue.pop_back();
-    for (std::uint32_t e : edges_of[t]) {
-      const auto [begin, end] = entries(e);
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::uint32_t u = edges[k].triangle;
-        if (far[u] && !removed[u]) removed[u] = 1, queue.push_back(u);
-      }
+    for (std::uint32_t u : across[t]) {
+      if (far[u] && !removed[u]) removed[u] = 1, queue.push_back(u);
     }
   }
   std::size_t next = 0;
@@ -311,6 +298,11 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   }
   std::vector<OrientedPoint> gathered = GatherPoints(views);
   const std::size_t gathered_count = gathered.size();
+  std::vector<Eigen::Vector3f> unthinned;  // what the trim measures against (max_extension)
+  if (options.max_extension_spacings > 0) {
+    unthinned.reserve(gathered_count);
+    for (const OrientedPoint& p : gathered) unthinned.push_back(p.position);
+  }
   float thinning_cell = 0;
   std::vector<OrientedPoint> points =
       Thin(std::move(gathered), options.max_points, area, &thinning_cell);
@@ -360,7 +352,7 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   TriangleMesh result = ContourDistanceVolume(volume);
   const double max_extension = options.max_extension_spacings * sample_spacing;
   if (max_extension > 0 && max_extension < options.support_voxels * voxel) {
-    TrimBeyondData(views, static_cast<float>(max_extension), &result);
+    TrimBeyondData(unthinned, static_cast<float>(max_extension), &result);
   }
   if (!result.triangles.empty()) KeepMainPieces(&result, options.min_piece_share);
   if (result.triangles.empty()) {

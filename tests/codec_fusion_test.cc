@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/enc/decimation.h"
+#include "codec/enc/seen_free_space.h"
 #include "codec/enc/surface_fusion.h"
 #include "tests/test_util.h"
 #include "tools/io/capture.h"
@@ -414,6 +415,86 @@ TEST(FuseRangeMeshesTest, MaxExtensionTrimsFromTheBoundaryOnly) {
   };
   EXPECT_TRUE(covers_centre(*trimmed));
   EXPECT_LE(FarthestCentreOutsideSquare(*trimmed, 0.2f), 1.5f * 0.004f + 1e-5f);
+}
+
+// The camera 1 m above the 0.4 m sheet of MakeGridPlane: one pixel per 4 mm sample there.
+ViewCalibration CameraAboveSheet() { return testing::CameraLookingAtOrigin({0, 0, 1}, 200, 250); }
+
+TEST(SeenFreeSpaceTest, InFrontOfTheDataOrPastItsEdgeWhereTheCameraFacesTheSurface) {
+  const std::vector<TriangleMesh> views = {testing::MakeGridPlane(0.4f, 100)};
+  const std::vector<ViewCalibration> cameras = {CameraAboveSheet()};
+  const SeenFreeSpace free_space(views, cameras, /*margin_pixels=*/0);
+  ASSERT_EQ(free_space.view_count(), 1);
+  const Vector3f up = Vector3f::UnitZ();
+  EXPECT_TRUE(free_space.Contains({0.05f, 0.02f, 0.05f}, up, 0.01f));   // 5 cm in front
+  EXPECT_FALSE(free_space.Contains({0.05f, 0.02f, 0.005f}, up, 0.01f));  // within tolerance
+  EXPECT_FALSE(free_space.Contains({0.05f, 0.02f, -0.05f}, up, 0.01f));  // behind: occluded
+  EXPECT_FALSE(free_space.Contains({0.199f, 0, 0}, up, 0.01f));          // on the data
+  EXPECT_TRUE(free_space.Contains({0.21f, 0, 0}, up, 0.01f));            // past its edge
+  // Past the edge, but the camera would see that surface at 87 degrees: it does not speak.
+  const Vector3f grazing = Vector3f(1, 0, 0.05f).normalized();
+  EXPECT_FALSE(free_space.Contains({0.21f, 0, 0}, grazing, 0.01f));
+  EXPECT_FALSE(free_space.Contains({0, 0, 1.5f}, up, 0.01f));  // behind the camera
+  EXPECT_FALSE(free_space.Contains({5, 0, 0}, up, 0.01f));     // outside its image
+  // A margin of 2 pixels (8 mm there) keeps the first points past the edge.
+  const SeenFreeSpace with_margin(views, cameras, 2);
+  EXPECT_FALSE(with_margin.Contains({0.205f, 0, 0}, up, 0.01f));
+  EXPECT_TRUE(with_margin.Contains({0.215f, 0, 0}, up, 0.01f));
+  // Blocks of 2 x 2 pixels keep their nearest depth: the edge moves out by up to a pixel.
+  const SeenFreeSpace blocks(views, cameras, 0, 0.5f, 2);
+  EXPECT_TRUE(blocks.Contains({0.05f, 0.02f, 0.05f}, up, 0.01f));
+  EXPECT_FALSE(blocks.Contains({0.05f, 0.02f, -0.05f}, up, 0.01f));
+  EXPECT_TRUE(blocks.Contains({0.215f, 0, 0}, up, 0.01f));
+}
+
+TEST(SeenFreeSpaceTest, ViewsWithoutIntrinsicsOrPoseTakeNoPart) {
+  const std::vector<TriangleMesh> views = {testing::MakeGridPlane(0.4f, 100),
+                                           testing::MakeGridPlane(0.4f, 100)};
+  std::vector<ViewCalibration> cameras = {CameraAboveSheet(), CameraAboveSheet()};
+  cameras[0].intrinsics.reset();
+  cameras[1].has_extrinsics = false;
+  const SeenFreeSpace free_space(views, cameras);
+  EXPECT_EQ(free_space.view_count(), 0);
+  EXPECT_FALSE(free_space.Contains({0, 0, 0.5f}, Vector3f::UnitZ(), 0));
+  EXPECT_EQ(SeenFreeSpace(views, {}).view_count(), 0);
+}
+
+TEST(FuseRangeMeshesTest, CamerasEndAThinnedSheetAtItsSeenEdge) {
+  // As ThinnedInputEndsNearTheDataWithMaxExtension: the trim alone leaves the sheet up to 1.5
+  // samples too wide; the camera saw the background there.
+  std::vector<TriangleMesh> views = {testing::MakeGridPlane(0.4f, 100)};
+  SurfaceFusionOptions options;
+  options.max_points = 400;
+  options.max_extension_spacings = 1.5;
+  auto trimmed = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(trimmed.ok()) << trimmed.status().ToString();
+  options.view_cameras = {CameraAboveSheet()};
+  auto seen = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(seen.ok()) << seen.status().ToString();
+  const float spacing = 0.4f / 100;
+  EXPECT_GT(FarthestCentreOutsideSquare(*trimmed, 0.2f), 0.9f * spacing);
+  EXPECT_LE(FarthestCentreOutsideSquare(*seen, 0.2f), 0.6f * spacing)
+      << FarthestCentreOutsideSquare(*seen, 0.2f) / spacing;
+  EXPECT_NEAR(SurfaceArea(*seen), 0.16, 0.16 * 0.05);
+  options.free_space_margin_pixels = -1;
+  EXPECT_EQ(FuseRangeMeshes(views, options).status().code(), StatusCode::kInvalidArgument);
+}
+
+TEST(FuseRangeMeshesTest, CamerasKeepAClosedBodyTurningOutOfSight) {
+  // A sphere seen by one camera: past its silhouette the fused surface turns away from the
+  // camera, behind what it saw or at grazing angles, so nothing there is cut.
+  const Vector3f sensor(0, 0, 0.7f);
+  std::mt19937 random(3);
+  const std::vector<TriangleMesh> views = {MakeSphereRangeView(sensor, 0.2f, 160, 0, &random)};
+  SurfaceFusionOptions options;
+  options.max_points = 2000;
+  options.max_extension_spacings = 1.5;
+  auto trimmed = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(trimmed.ok()) << trimmed.status().ToString();
+  options.view_cameras = {testing::CameraLookingAtOrigin(sensor, 300, 450)};
+  auto seen = FuseRangeMeshes(views, options);
+  ASSERT_TRUE(seen.ok()) << seen.status().ToString();
+  EXPECT_GT(SurfaceArea(*seen), 0.99 * SurfaceArea(*trimmed));
 }
 
 TEST(FuseRangeMeshesTest, ThinPlateFusesAsTwoSheets) {

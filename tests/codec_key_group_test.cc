@@ -13,6 +13,7 @@
 #include "codec/enc/encoder.h"
 #include "tests/analytic_mvid.h"
 #include "tools/eval/surface_distance.h"
+#include "tests/test_util.h"
 
 namespace meshvid {
 namespace {
@@ -138,6 +139,11 @@ TEST(DataFit, CountsPointsBeyondTheRepresentableDistance) {
   DataFit failed_fusion = fit;
   failed_fusion.unexplained_share = 0.9;
   EXPECT_FALSE(StillExplains(failed_fusion, failed_fusion, 0.02));
+  // Surface in space a camera saw through counts as the unexplained data does.
+  DataFit seen_through = fit;
+  seen_through.seen_through_share = 0.04;
+  EXPECT_FALSE(StillExplains(fit, seen_through, 0.02));
+  EXPECT_TRUE(StillExplains(fit, seen_through, 0.05));
 }
 
 TEST(DataFit, WithNormalsSamplesMayBeSparserThanTheDistance) {
@@ -201,6 +207,47 @@ TEST(KeyGroups, OneKeyGroupAtMostKeepsOneBaseThroughTheJump) {
   auto last = (*decoder)->DecodeFrame(9, 1);
   ASSERT_TRUE(first.ok() && last.ok());
   EXPECT_EQ(first->triangles, last->triangles);
+}
+
+TEST(KeyGroups, ASheetWhoseEdgeRecedesEndsTheKeyGroupWhereACameraSeesPastIt) {
+  // A curved 0.4 m sheet (no sliding along itself) seen from 1 m above, its edge receding one
+  // sample (6.7 mm) a frame: every point stays on the key frame's base, whose rim then hangs
+  // where the camera sees nothing.
+  std::vector<std::vector<TriangleMesh>> views;
+  for (int f = 0; f < 6; ++f) {
+    TriangleMesh sheet = testing::MakeGridPlane(0.4f, 60);
+    for (Eigen::Vector3f& p : sheet.positions) p.z() = -(p.x() * p.x() + 0.5f * p.y() * p.y());
+    sheet.normals.clear();
+    const float edge = 0.2f - 0.4f / 60 * static_cast<float>(f) + 1e-4f;
+    std::erase_if(sheet.triangles, [&](const Triangle& t) {
+      return sheet.positions[t[0]].x() > edge || sheet.positions[t[1]].x() > edge ||
+             sheet.positions[t[2]].x() > edge;
+    });
+    RemoveUnreferencedVertices(&sheet);
+    views.push_back({sheet});
+  }
+  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(views);
+  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  EncoderOptions options;
+  options.base_vertices = 400;
+  auto encode = [&](const MemoryFrameSource& frames) {
+    auto summary = EncodeCapture(
+        frames, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
+    EXPECT_TRUE(summary.ok()) << summary.status().ToString();
+    return summary.ok() ? summary->key_groups.size() : 0;
+  };
+  EXPECT_EQ(encode(*source), 1u);  // without cameras nothing contradicts the base
+  source->set_view_cameras({testing::CameraLookingAtOrigin({0, 0, 1}, 200, 150)});
+  StatusOr<EncodeSummary> summary = EncodeCapture(
+      *source, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
+  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
+  EXPECT_GT(summary->key_groups[0].cut_seen_through, 0.02);
+  EXPECT_LT(summary->key_groups[0].cut_unexplained, 0.02);
+  const std::size_t with_cameras = summary->key_groups.size();
+  EXPECT_GE(with_cameras, 2u);
+  EXPECT_LE(with_cameras, 3u);
+  options.tuning.seen_free_space = false;
+  EXPECT_EQ(encode(*source), 1u);
 }
 
 TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {

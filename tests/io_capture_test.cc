@@ -11,6 +11,7 @@
 
 #include "tests/test_util.h"
 #include "tools/io/capture.h"
+#include "tools/io/capture_frame_source.h"
 #include "tools/io/mesh_io.h"
 
 namespace meshvid {
@@ -98,6 +99,17 @@ TEST(CaptureManifestTest, RoundTripsThroughWriteAndOpen) {
   ASSERT_EQ(frame->size(), 2u);
   EXPECT_EQ((*frame)[0].vertex_count(), 9u);
   EXPECT_EQ((*frame)[1].vertex_count(), 16u);
+  // The encoder's source hands the calibration on (SeenFreeSpace uses view 1 only).
+  const auto source = CaptureFrameSource::Open(dir.File("manifest.json"));
+  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  const std::vector<ViewCalibration> cameras = (*source)->view_cameras();
+  ASSERT_EQ(cameras.size(), 2u);
+  EXPECT_FALSE(cameras[0].intrinsics.has_value());
+  ASSERT_TRUE(cameras[1].intrinsics.has_value());
+  EXPECT_EQ(cameras[1].intrinsics->fx, 525.5);
+  EXPECT_TRUE(cameras[1].has_extrinsics);
+  EXPECT_TRUE(cameras[1].world_from_camera.matrix() ==
+              info.views[1].calibration.world_from_camera.matrix());
 }
 
 TEST(CaptureManifestTest, PatternFormExpandsFromFirstFrame) {
@@ -331,6 +343,10 @@ TEST(CaptureConfTest, StanfordConfPosesEachScan) {
     // The conjugate of a quarter turn about z: (x, y) -> (y, -x).
     EXPECT_NEAR((b->positions[i] - Eigen::Vector3f(p.y(), -p.x(), p.z())).norm(), 0, 1e-5);
   }
+  // A camera pose is moved with its scan (no intrinsics here, so unused by the encoder).
+  const ViewCalibration camera_a = (*capture)->view_camera(0);
+  EXPECT_NEAR((camera_a.world_from_camera.translation() - Eigen::Vector3d(1, 2, 3)).norm(), 0,
+              1e-12);
   WriteFile(dir.File("bad.conf"), "bmesh a.ply 0 0 0 0 0 0 1\nscan b.ply\n");
   EXPECT_EQ(CaptureSequence::Open(dir.File("bad.conf")).status().message(),
             dir.File("bad.conf") +

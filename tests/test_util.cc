@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +88,21 @@ TriangleMesh MakeGridPlane(float size, int n, float z) {
     }
   }
   return mesh;
+}
+
+ViewCalibration CameraLookingAtOrigin(const Eigen::Vector3f& position, int pixels, double focal) {
+  const Eigen::Vector3d forward = -position.cast<double>().normalized();
+  const Eigen::Vector3d helper =
+      std::abs(forward.y()) < 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d right = forward.cross(helper).normalized();
+  const Eigen::Vector3d down = forward.cross(right);
+  ViewCalibration camera;
+  camera.intrinsics = PinholeIntrinsics{pixels, pixels, focal, focal, (pixels - 1) / 2.0,
+                                        (pixels - 1) / 2.0};
+  camera.world_from_camera.linear() << right, down, forward;
+  camera.world_from_camera.translation() = position.cast<double>();
+  camera.has_extrinsics = true;
+  return camera;
 }
 
 }  // namespace meshvid::testing

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "codec/common/camera.h"
 #include "codec/common/mesh.h"
 
 namespace meshvid::testing {
@@ -48,6 +49,10 @@ CliRun RunMeshvid(const std::string& arguments, const TempDir& dir);
 /// A flat square grid mesh in the z = `z` plane, side `size`, `n` x `n` quads, centred on the
 /// origin, normals along +z.
 TriangleMesh MakeGridPlane(float size, int n, float z = 0.0f);
+
+/// A calibrated pinhole camera at `position` looking at the origin: a square image of
+/// `pixels`, focal length `focal` in pixels, principal point in the middle.
+ViewCalibration CameraLookingAtOrigin(const Eigen::Vector3f& position, int pixels, double focal);
 
 /// Edges used by one triangle only: the length of the surface's boundary, in edges.
 std::size_t BoundaryEdgeCount(const TriangleMesh& mesh);

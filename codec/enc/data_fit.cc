@@ -118,6 +118,8 @@ bool StillExplains(const DataFit& key_frame, const DataFit& frame, double thresh
              std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold &&
          frame.stray_share <=
              std::min(key_frame.stray_share, kMostUnexplainedAtKeyFrame) + threshold &&
+         frame.seen_through_share <=
+             std::min(key_frame.seen_through_share, kMostUnexplainedAtKeyFrame) + threshold &&
          frame.farthest_from_data <= key_frame.farthest_from_data + frame.stray_distance;
 }
 

@@ -24,6 +24,10 @@ struct DataFit {
   double farthest_from_data = 0;
   /// The stray distance this fit was measured with.
   double stray_distance = 0;
+  /// Share of the surface samples lying in space a camera saw through, farther in front of
+  /// what it saw than a displacement reaches (SeenFreeSpace; 0 without cameras): a sheet's
+  /// tracked surface running past its moving edge.
+  double seen_through_share = 0;
 };
 
 /// Measures how far `data_points` lie from the surface sampled by `surface_samples` (nearest
@@ -43,8 +47,9 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
 /// 0.0, arm-block 0.005, horse-gallop 0.05-0.09; a failed horse-gallop fusion 0.92.
 inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 
-/// Whether the tracked surface still explains a frame: its unexplained share, and its stray
-/// share, have each grown by at most `threshold` over the key frame's (where the base was
+/// Whether the tracked surface still explains a frame: its unexplained share, its stray
+/// share and its seen-through share have each grown by at most `threshold` over the key
+/// frame's (where the base was
 /// fused from the data itself), counted as at most kMostUnexplainedAtKeyFrame (a key frame
 /// whose fusion failed does not excuse the frames after it); and no part of the surface is
 /// farther from the data than the key frame's farthest plus the stray distance (a patch the

@@ -196,6 +196,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
   }
   EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}};
+  if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();
   summary.scale = scale;
   summary.tolerance = ctx.lengths.tolerance;
   SegmentationOptions& seg = ctx.seg;

@@ -32,6 +32,12 @@ struct EncoderTuning {
   /// the edge of the data (SurfaceFusionOptions::max_extension_spacings; 0: where the coarse
   /// fusion's volume ends it).
   double base_max_extension = 1.5;
+  /// Use the views' cameras where the capture has them (FrameSource::view_cameras): a key
+  /// frame's fused surface ends where a camera saw through it (SurfaceFusionOptions::
+  /// view_cameras; a sheet's open edge, which the trim above leaves too long), and a key group
+  /// ends where its tracked surface lies in space a camera saw through (DataFit::
+  /// seen_through_share).
+  bool seen_free_space = true;
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;
@@ -182,6 +188,9 @@ struct KeyGroupSummary {
   /// At the frame that ended the key group (the next key frame), or -1 when the capture (or
   /// max_key_groups) ended it.
   double cut_unexplained = -1;
+  /// At that frame, the share of the tracked surface lying where a camera saw through
+  /// (DataFit::seen_through_share), or -1 as above.
+  double cut_seen_through = -1;
 };
 
 /// What an encode produced, for the summary a tool prints.

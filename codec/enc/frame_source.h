@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "codec/common/camera.h"
 #include "codec/common/mesh.h"
 #include "format/status.h"
 
@@ -22,6 +23,9 @@ class FrameSource {
   virtual double frame_rate() const = 0;   ///< frames per second, stored in the file
   /// All views of frame `frame` (0-based), in view order. May be called from one thread only.
   virtual StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const = 0;
+  /// The views' cameras in view order, where known (empty: none). With them the encoder knows
+  /// the space each view saw through and ends a fused base's open edges there.
+  virtual std::vector<ViewCalibration> view_cameras() const { return {}; }
 };
 
 /// A capture held in memory: `frames[frame][view]`, every frame with the same views.
@@ -38,12 +42,16 @@ class MemoryFrameSource : public FrameSource {
   double frame_rate() const override { return frame_rate_; }
   /// A copy of frame `frame`'s views; kInvalidArgument outside 0..frame_count()-1.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override;
+  std::vector<ViewCalibration> view_cameras() const override { return cameras_; }
+  /// Gives the views' cameras (one per view, in view order; see FrameSource::view_cameras).
+  void set_view_cameras(std::vector<ViewCalibration> cameras) { cameras_ = std::move(cameras); }
 
  private:
   MemoryFrameSource(std::vector<std::vector<TriangleMesh>> frames, double frame_rate)
       : frames_(std::move(frames)), frame_rate_(frame_rate) {}
   std::vector<std::vector<TriangleMesh>> frames_;
   double frame_rate_;
+  std::vector<ViewCalibration> cameras_;
 };
 
 }  // namespace meshvid

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "codec/common/subdivision.h"
 #include "codec/enc/data_fit.h"
@@ -25,7 +28,8 @@ double SecondsSince(Clock::time_point start) {
 
 Status Cancelled() { return CancelledError("encode cancelled"); }
 
-StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction) {
+StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction,
+                                std::span<const ViewCalibration> cameras) {
   std::vector<StatusOr<TriangleMesh>> decimated(views.size(), TriangleMesh{});
   tbb::parallel_for(std::size_t(0), views.size(), [&](std::size_t v) {
     if (views[v].empty()) return;
@@ -43,6 +47,10 @@ StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double f
   }
   FrameProxy result;
   if (proxy.empty()) return result;
+  if (!cameras.empty()) {
+    result.free_space = std::make_shared<const SeenFreeSpace>(
+        views, cameras, /*margin_pixels=*/0, /*min_facing_cosine=*/0.5f, kFreeSpacePixelBlock);
+  }
   MESHVID_ASSIGN_OR_RETURN(result.target, ShootingTarget::Create(proxy));
   result.points = std::move(proxy.positions);
   return result;
@@ -90,6 +98,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   SurfaceFusionOptions fusion_options;
   fusion_options.max_points = fusion_points;
   fusion_options.max_extension_spacings = options.tuning.base_max_extension;
+  fusion_options.view_cameras = ctx.view_cameras;
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));
   DecimationOptions decimation;
   decimation.target_vertices = options.base_vertices;
@@ -249,12 +258,25 @@ class FitMeter {
         lattice_(lattice),
         distance_(representable_distance),
         stray_distance_(stray_distance) {}
-  DataFit Measure(const std::vector<RigidTransform>& transforms,
-                  const std::vector<Eigen::Vector3f>& points) {
+  DataFit Measure(const std::vector<RigidTransform>& transforms, const FrameProxy& frame) {
     PoseVertices(motion_, transforms, base_.positions, &posed_);
     ComputeVertexNormals(posed_, base_.triangles, &normals_);
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    return MeasureDataFit(samples_, points, distance_, stray_distance_, directions_);
+    DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_, directions_);
+    if (frame.free_space && !samples_.empty()) {
+      // Farther in front of what a camera saw than a displacement reaches.
+      const std::size_t seen_through = tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, samples_.size(), 2048), std::size_t{0},
+          [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              count += frame.free_space->Contains(samples_[i], directions_[i], distance_);
+            }
+            return count;
+          },
+          std::plus<>());
+      fit.seen_through_share = double(seen_through) / double(samples_.size());
+    }
+    return fit;
   }
 
  private:
@@ -365,7 +387,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views,
                              ctx.source.LoadFrame(analysed[k]));
     MESHVID_ASSIGN_OR_RETURN((*proxies)[analysed[k]],
-                             BuildProxy(views, options.tuning.proxy_fraction));
+                             BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
   }
   analysis->seconds_proxies += SecondsSince(stage_start);
   std::vector<const ShootingTarget*> targets;
@@ -388,7 +410,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     if ((t - start) % stride == 0) continue;
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
+    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
                                    std::span(tracks.data(), std::size_t(t - start)));
   }
@@ -453,7 +475,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {
-      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.tuning.proxy_fraction));
+      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     }
     MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
@@ -479,10 +501,11 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   std::vector<std::vector<RigidTransform>>& tracks = analysis.tracks;
   DataFit key_fit;
   std::optional<FitMeter> meter;
-  auto explained = [&](int t, const std::vector<Eigen::Vector3f>& points) {
-    const DataFit fit = meter->Measure(tracks[t - start], points);
+  auto explained = [&](int t, const FrameProxy& frame) {
+    const DataFit fit = meter->Measure(tracks[t - start], frame);
     if (!StillExplains(key_fit, fit, options.key_group_threshold)) {
       summary.cut_unexplained = fit.unexplained_share;
+      summary.cut_seen_through = fit.seen_through_share;
       return false;
     }
     summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
@@ -504,20 +527,20 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     // Stray: farther from every data point than a correspondence may reach.
     meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance,
                   ctx.lengths.max_distance);
-    key_fit = meter->Measure(tracks[0], proxies[start].points);
+    key_fit = meter->Measure(tracks[0], proxies[start]);
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.worst_unexplained = key_fit.unexplained_share;
-    summary.cut_unexplained = -1;
+    summary.cut_unexplained = summary.cut_seen_through = -1;
     tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;
     for (int t = start + 1; t < stop; ++t) {
-      if (explained(t, proxies[t].points)) continue;
+      if (explained(t, proxies[t])) continue;
       // The segmentation lost the frame: tracked again from the frames before it.
       if (tracker) {
         tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t],
                                        std::span(tracks.data(), std::size_t(t - start)));
-        if (explained(t, proxies[t].points)) {
-          summary.cut_unexplained = -1;
+        if (explained(t, proxies[t])) {
+          summary.cut_unexplained = summary.cut_seen_through = -1;
           continue;
         }
       }
@@ -530,9 +553,9 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction));
+    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     tracks.push_back(TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t], tracks));
-    if (!explained(t, proxies[t].points)) {
+    if (!explained(t, proxies[t])) {
       tracks.pop_back();
       break;
     }

@@ -7,16 +7,19 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "codec/common/camera.h"
 #include "codec/common/mesh.h"
 #include "codec/common/motion.h"
 #include "codec/common/progress.h"
 #include "codec/enc/encoder.h"
 #include "codec/enc/graph_tracking.h"
 #include "codec/enc/normal_shooting.h"
+#include "codec/enc/seen_free_space.h"
 #include "codec/enc/segmentation.h"
 #include "format/status.h"
 
@@ -39,10 +42,18 @@ struct Lengths {
 struct FrameProxy {
   std::unique_ptr<ShootingTarget> target;  ///< null when the frame has no data
   std::vector<Eigen::Vector3f> points;
+  /// Where the frame's calibrated cameras saw through (null without cameras).
+  std::shared_ptr<const SeenFreeSpace> free_space;
 };
 
-/// Decimates a frame's views into one proxy (fraction: share of each view's vertices kept).
-StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction);
+/// Pixel blocks a proxy's SeenFreeSpace keeps (2: a quarter of a full-resolution depth image
+/// per view, since a key group holds up to key_group_window proxies).
+inline constexpr int kFreeSpacePixelBlock = 2;
+
+/// Decimates a frame's views into one proxy (fraction: share of each view's vertices kept);
+/// with `cameras` (EncodeContext::view_cameras), also what they saw through.
+StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction,
+                                std::span<const ViewCalibration> cameras = {});
 
 /// Proxies by frame, shared by consecutive key groups (a cut key group's later frames are
 /// the next one's first).
@@ -60,6 +71,8 @@ struct EncodeContext {
   SegmentationOptions seg;
   int end = 0;  ///< one past the last frame encoded
   GraphTrackingOptions track;  ///< the frame-to-frame tracker's constants
+  /// The source's cameras when tuning.seen_free_space is on (empty: none used).
+  std::vector<ViewCalibration> view_cameras;
 };
 
 /// The error a cancelled progress callback ends an encode with.

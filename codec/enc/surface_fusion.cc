@@ -20,6 +20,7 @@
 #include "codec/common/point_tree.h"
 #include "codec/enc/contour_volume.h"
 #include "codec/enc/distance_volume.h"
+#include "codec/enc/seen_free_space.h"
 
 namespace meshvid {
 namespace {
@@ -190,7 +191,9 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
 // `data`, peeling from the boundary inwards: a far triangle goes only once it touches the
 // boundary (through triangles removed before it), so sparse data inside the surface makes no
 // hole.
-void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit, TriangleMesh* mesh) {
+void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
+                    const SeenFreeSpace& free_space, float free_space_tolerance,
+                    TriangleMesh* mesh) {
   const PointCloud cloud{data};
   PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const std::size_t count = mesh->triangles.size();
@@ -201,10 +204,18 @@ void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit, Triangle
       const Triangle& t = mesh->triangles[i];
       const Eigen::Vector3f centre =
           (mesh->positions[t[0]] + mesh->positions[t[1]] + mesh->positions[t[2]]) / 3;
-      std::uint32_t nearest = 0;
-      float squared = 0;
-      tree.knnSearch(centre.data(), 1, &nearest, &squared);
-      far[i] = squared > limit_squared;
+      if (limit > 0 && !data.empty()) {
+        std::uint32_t nearest = 0;
+        float squared = 0;
+        tree.knnSearch(centre.data(), 1, &nearest, &squared);
+        far[i] = squared > limit_squared;
+      }
+      if (!far[i] && free_space.view_count() > 0) {
+        const Eigen::Vector3f normal = (mesh->positions[t[1]] - mesh->positions[t[0]])
+                                           .cross(mesh->positions[t[2]] - mesh->positions[t[0]])
+                                           .normalized();
+        far[i] = free_space.Contains(centre, normal, free_space_tolerance);
+      }
     }
   });
   // Undirected edges with their triangle, sorted so that the uses of one edge are adjacent.
@@ -271,6 +282,12 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   }
   if (!(options.max_extension_spacings >= 0) || !std::isfinite(options.max_extension_spacings)) {
     return InvalidArgumentError("surface fusion max_extension_spacings must be finite and >= 0");
+  }
+  if (!(options.free_space_tolerance_spacings >= 0) ||
+      !std::isfinite(options.free_space_tolerance_spacings) ||
+      options.free_space_margin_pixels < 0 || options.free_space_margin_pixels > 16) {
+    return InvalidArgumentError("surface fusion free_space_tolerance_spacings must be finite "
+                                "and >= 0, free_space_margin_pixels in [0, 16]");
   }
   if (!finite_positive(options.voxel_scale) || !finite_positive(options.truncation_voxels) ||
       !finite_positive(options.support_voxels) || options.truncation_voxels > 7) {
@@ -350,9 +367,13 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
     return CancelledError("surface fusion cancelled");
   }
   TriangleMesh result = ContourDistanceVolume(volume);
-  const double max_extension = options.max_extension_spacings * sample_spacing;
-  if (max_extension > 0 && max_extension < options.support_voxels * voxel) {
-    TrimBeyondData(unthinned, static_cast<float>(max_extension), &result);
+  double max_extension = options.max_extension_spacings * sample_spacing;
+  if (!(max_extension < options.support_voxels * voxel)) max_extension = 0;  // no trim needed
+  const SeenFreeSpace free_space(views, options.view_cameras, options.free_space_margin_pixels);
+  if ((max_extension > 0 || free_space.view_count() > 0) && !result.triangles.empty()) {
+    TrimBeyondData(unthinned, static_cast<float>(max_extension), free_space,
+                   static_cast<float>(options.free_space_tolerance_spacings * sample_spacing),
+                   &result);
   }
   if (!result.triangles.empty()) KeepMainPieces(&result, options.min_piece_share);
   if (result.triangles.empty()) {

@@ -5,7 +5,9 @@
 #define MESHVID_CODEC_ENC_SURFACE_FUSION_H_
 
 #include <span>
+#include <vector>
 
+#include "codec/common/camera.h"
 #include "codec/common/mesh.h"
 #include "codec/common/progress.h"
 #include "format/status.h"
@@ -34,6 +36,17 @@ struct SurfaceFusionOptions {
   /// voxels past the edge of the data; this keeps the edge where full-resolution fusion
   /// would put it.
   double max_extension_spacings = 0;
+  /// The views' cameras, in view order (empty: none known). With them the same trim also
+  /// removes triangles whose centre lies in space a camera saw through (SeenFreeSpace): in
+  /// front of the nearest surface its pixel met, by more than free_space_tolerance_spacings
+  /// sample spacings, or where it met nothing. A sheet's surface then ends at its seen edge,
+  /// while a closed body's surface turning away out of sight stays.
+  std::vector<ViewCalibration> view_cameras;
+  /// How far in front of what a camera saw a surface must lie to be removed, in sample
+  /// spacings (the data's noise and the fusion's smoothing stay within it).
+  double free_space_tolerance_spacings = 2;
+  /// A pixel counts as seen through only when the pixels this close to it are as well.
+  int free_space_margin_pixels = 0;
   /// Memory bound: the voxel size grows until the volume's estimated size fits (about 12
   /// bytes per voxel).
   std::size_t max_voxels = 20'000'000;

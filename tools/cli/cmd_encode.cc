@@ -140,7 +140,8 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"surface_share", k.surface_share},
                                {"key_frame_unexplained", k.key_frame_unexplained},
                                {"worst_unexplained", k.worst_unexplained},
-                               {"cut_unexplained", k.cut_unexplained}});
+                               {"cut_unexplained", k.cut_unexplained},
+                               {"cut_seen_through", k.cut_seen_through}});
   }
   j["scale"] = s.scale;
   j["tolerance"] = s.tolerance;
@@ -276,10 +277,16 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Farthest a key frame's fused base reaches past the edge of the data, in the "
                   "views' sample spacings (0: as far as the coarse fusion's volume reaches)")
       ->capture_default_str();
+  cmd->add_option("--free-space", o.tuning.seen_free_space,
+                  "Use the capture's calibrated cameras (intrinsics and poses): a key frame's "
+                  "base ends where a camera saw through it (a sheet's open edge), and a key "
+                  "group ends where its tracked surface lies where a camera saw through")
+      ->capture_default_str();
   cmd->add_option("--key-group-threshold", o.key_group_threshold,
                   "Start a new key group (a fresh base fused from that frame) where the share "
                   "of captured points the tracked base cannot reach (farther than the "
-                  "displacement range) grows by more than this over its key frame's, 0..1")
+                  "displacement range), or of its surface lying where a camera saw through "
+                  "(--free-space), grows by more than this over its key frame's, 0..1")
       ->capture_default_str();
   cmd->add_option("--max-key-groups", o.max_key_groups,
                   "Most key groups; 1 keeps one base and one connectivity for the whole "

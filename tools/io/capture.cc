@@ -247,6 +247,12 @@ StatusOr<TriangleMesh> CaptureSequence::LoadView(int frame, int view) const {
   return mesh;
 }
 
+ViewCalibration CaptureSequence::view_camera(int view) const {
+  ViewCalibration camera = info_.views[view].calibration;
+  camera.world_from_camera = view_poses_[view] * camera.world_from_camera;
+  return camera;
+}
+
 StatusOr<std::vector<TriangleMesh>> CaptureSequence::LoadFrame(int frame) const {
   std::vector<TriangleMesh> meshes;
   meshes.reserve(view_count());

@@ -59,6 +59,9 @@ class CaptureSequence {
   StatusOr<TriangleMesh> LoadView(int frame, int view) const;
   /// Loads all views of a frame, in view order.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const;
+  /// View `view`'s calibration with the camera posed in the world its loaded meshes are in
+  /// (a Stanford .conf line's pose applied after the extrinsics, as LoadView does).
+  ViewCalibration view_camera(int view) const;
 
  private:
   friend class CaptureSequenceBuilder;

@@ -17,4 +17,12 @@ StatusOr<std::vector<TriangleMesh>> CaptureFrameSource::LoadFrame(int frame) con
   return *views;
 }
 
+std::vector<ViewCalibration> CaptureFrameSource::view_cameras() const {
+  std::vector<ViewCalibration> cameras;
+  for (int view = 0; view < capture_->view_count(); ++view) {
+    cameras.push_back(capture_->view_camera(view));
+  }
+  return cameras;
+}
+
 }  // namespace meshvid

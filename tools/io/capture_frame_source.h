@@ -32,6 +32,9 @@ class CaptureFrameSource : public FrameSource {
   double frame_rate() const override { return capture_->info().frame_rate; }
   /// The views of `frame`, parsed from their files unless among the last kCachedFrames.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override;
+  /// The views' calibration, posed as their meshes are loaded (a Stanford .conf's poses
+  /// included); views without intrinsics or a pose are not usable for SeenFreeSpace.
+  std::vector<ViewCalibration> view_cameras() const override;
 
  private:
   std::unique_ptr<CaptureSequence> capture_;

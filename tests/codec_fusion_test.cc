@@ -431,7 +431,7 @@ TEST(SeenFreeSpaceTest, InFrontOfTheDataOrPastItsEdgeWhereTheCameraFacesTheSurfa
   EXPECT_FALSE(free_space.Contains({0.05f, 0.02f, -0.05f}, up, 0.01f));  // behind: occluded
   EXPECT_FALSE(free_space.Contains({0.199f, 0, 0}, up, 0.01f));          // on the data
   EXPECT_TRUE(free_space.Contains({0.21f, 0, 0}, up, 0.01f));            // past its edge
-  // Past the edge, but the camera would see that surface at 87 degrees: it does not speak.
+  // Past the edge, but the camera would see that surface at 81 degrees: it does not speak.
   const Vector3f grazing = Vector3f(1, 0, 0.05f).normalized();
   EXPECT_FALSE(free_space.Contains({0.21f, 0, 0}, grazing, 0.01f));
   EXPECT_FALSE(free_space.Contains({0, 0, 1.5f}, up, 0.01f));  // behind the camera
@@ -445,6 +445,18 @@ TEST(SeenFreeSpaceTest, InFrontOfTheDataOrPastItsEdgeWhereTheCameraFacesTheSurfa
   EXPECT_TRUE(blocks.Contains({0.05f, 0.02f, 0.05f}, up, 0.01f));
   EXPECT_FALSE(blocks.Contains({0.05f, 0.02f, -0.05f}, up, 0.01f));
   EXPECT_TRUE(blocks.Contains({0.215f, 0, 0}, up, 0.01f));
+  // Judged by the cameras that face a point inside their image only.
+  EXPECT_EQ(free_space.Judge({0.05f, 0.02f, 0}, up, 0.01f), SeenFreeSpace::Verdict::kSeen);
+  EXPECT_EQ(free_space.Judge({0.21f, 0, 0}, grazing, 0.01f), SeenFreeSpace::Verdict::kUnjudged);
+  EXPECT_EQ(free_space.Judge({5, 0, 0}, up, 0.01f), SeenFreeSpace::Verdict::kUnjudged);
+  // The gap is measured along the normal: 5 cm above the sheet, seen at 55 degrees from its
+  // normal, is 8.7 cm along the ray.
+  const float angle = 55 * static_cast<float>(M_PI) / 180;
+  const std::vector<ViewCalibration> oblique = {
+      testing::CameraLookingAtOrigin({std::sin(angle), 0, std::cos(angle)}, 200, 250)};
+  const SeenFreeSpace seen_obliquely(views, oblique, 0);
+  EXPECT_TRUE(seen_obliquely.Contains({0, 0, 0.05f}, up, 0.045f));
+  EXPECT_FALSE(seen_obliquely.Contains({0, 0, 0.05f}, up, 0.055f));
 }
 
 TEST(SeenFreeSpaceTest, ViewsWithoutIntrinsicsOrPoseTakeNoPart) {

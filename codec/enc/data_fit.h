@@ -24,9 +24,9 @@ struct DataFit {
   double farthest_from_data = 0;
   /// The stray distance this fit was measured with.
   double stray_distance = 0;
-  /// Share of the surface samples lying in space a camera saw through, farther in front of
-  /// what it saw than a displacement reaches (SeenFreeSpace; 0 without cameras): a sheet's
-  /// tracked surface running past its moving edge.
+  /// Share of the surface samples some camera can judge (SeenFreeSpace::Judge) that lie in
+  /// space a camera saw through, farther in front of what it saw than a displacement reaches
+  /// (0 without cameras): a sheet's tracked surface running past its moving edge.
   double seen_through_share = 0;
 };
 

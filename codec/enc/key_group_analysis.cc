@@ -48,8 +48,9 @@ StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double f
   FrameProxy result;
   if (proxy.empty()) return result;
   if (!cameras.empty()) {
-    result.free_space = std::make_shared<const SeenFreeSpace>(
+    auto free_space = std::make_shared<const SeenFreeSpace>(
         views, cameras, /*margin_pixels=*/0, /*min_facing_cosine=*/0.5f, kFreeSpacePixelBlock);
+    if (free_space->view_count() > 0) result.free_space = std::move(free_space);
   }
   MESHVID_ASSIGN_OR_RETURN(result.target, ShootingTarget::Create(proxy));
   result.points = std::move(proxy.positions);
@@ -264,17 +265,30 @@ class FitMeter {
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
     DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_, directions_);
     if (frame.free_space && !samples_.empty()) {
-      // Farther in front of what a camera saw than a displacement reaches.
-      const std::size_t seen_through = tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, samples_.size(), 2048), std::size_t{0},
-          [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
+      // Farther in front of what a camera saw than a displacement reaches, among the
+      // samples some camera can judge (a one-view rig judges fewer than a ring).
+      struct Counts {
+        std::size_t judged = 0, seen_through = 0;
+      };
+      const Counts counts = tbb::parallel_reduce(
+          tbb::blocked_range<std::size_t>(0, samples_.size(), 2048), Counts{},
+          [&](const tbb::blocked_range<std::size_t>& range, Counts partial) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              count += frame.free_space->Contains(samples_[i], directions_[i], distance_);
+              const SeenFreeSpace::Verdict verdict =
+                  frame.free_space->Judge(samples_[i], directions_[i], distance_);
+              partial.judged += verdict != SeenFreeSpace::Verdict::kUnjudged;
+              partial.seen_through += verdict == SeenFreeSpace::Verdict::kSeenThrough;
             }
-            return count;
+            return partial;
           },
-          std::plus<>());
-      fit.seen_through_share = double(seen_through) / double(samples_.size());
+          [](Counts a, const Counts& b) {
+            a.judged += b.judged;
+            a.seen_through += b.seen_through;
+            return a;
+          });
+      if (counts.judged > 0) {
+        fit.seen_through_share = double(counts.seen_through) / double(counts.judged);
+      }
     }
     return fit;
   }

@@ -25,9 +25,9 @@ void Rasterise(const TriangleMesh& mesh, const Eigen::Isometry3f& camera_from_wo
     projected[i] = Eigen::Vector3f(static_cast<float>(k.fx * c.x() / c.z() + k.cx),
                                    static_cast<float>(k.fy * c.y() / c.z() + k.cy), c.z());
     // The vertex itself is a sample, whatever the triangles around it look like.
-    const long u = std::lround(projected[i].x()), v = std::lround(projected[i].y());
-    if (u >= 0 && u < width && v >= 0 && v < height) {
-      float& d = (*depth)[static_cast<std::size_t>(v) * width + u];
+    const float x = std::round(projected[i].x()), y = std::round(projected[i].y());
+    if (x >= 0 && x < float(width) && y >= 0 && y < float(height)) {
+      float& d = (*depth)[static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x)];
       d = std::min(d, c.z());
     }
   }
@@ -39,10 +39,18 @@ void Rasterise(const TriangleMesh& mesh, const Eigen::Isometry3f& camera_from_wo
     if (!(a.z() > 0 && b.z() > 0 && c.z() > 0)) continue;
     const float area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
     if (!(std::abs(area) > 1e-12f)) continue;
-    const int u0 = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}))));
-    const int u1 = std::min(width - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
-    const int v0 = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}))));
-    const int v1 = std::min(height - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
+    // The pixel centres inside the triangle's box, clamped before any cast (a vertex near the
+    // camera's plane projects far outside the image).
+    auto first = [](float low, int size) {
+      return static_cast<int>(std::ceil(std::clamp(low, -1.0f, float(size))));
+    };
+    auto last = [](float high, int size) {
+      return static_cast<int>(std::floor(std::clamp(high, -1.0f, float(size))));
+    };
+    const int u0 = std::max(0, first(std::min({a.x(), b.x(), c.x()}), width));
+    const int u1 = std::min(width - 1, last(std::max({a.x(), b.x(), c.x()}), width));
+    const int v0 = std::max(0, first(std::min({a.y(), b.y(), c.y()}), height));
+    const int v1 = std::min(height - 1, last(std::max({a.y(), b.y(), c.y()}), height));
     for (int v = v0; v <= v1; ++v) {
       for (int u = u0; u <= u1; ++u) {
         const float wa = ((b.x() - u) * (c.y() - v) - (b.y() - v) * (c.x() - u)) / area;
@@ -122,24 +130,32 @@ SeenFreeSpace::SeenFreeSpace(std::span<const TriangleMesh> views,
   });
 }
 
-bool SeenFreeSpace::Contains(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
-                             float tolerance) const {
+SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
+                                             const Eigen::Vector3f& normal,
+                                             float tolerance) const {
+  Verdict verdict = Verdict::kUnjudged;
   for (const View& view : views_) {
     const Eigen::Vector3f c = view.camera_from_world * point;
     if (!(c.z() > 0)) continue;
-    const Eigen::Vector3f normal_in_camera = view.camera_from_world.linear() * normal;
-    if (!(std::abs(normal_in_camera.dot(c)) >= min_facing_cosine_ * c.norm())) continue;
+    const float distance = c.norm();
+    // Cosine between the surface's normal and the ray (either side).
+    const float facing = std::abs((view.camera_from_world.linear() * normal).dot(c)) / distance;
+    if (!(facing >= min_facing_cosine_)) continue;
     const PinholeIntrinsics& k = view.intrinsics;
-    const long u = std::lround(k.fx * c.x() / c.z() + k.cx);
-    const long v = std::lround(k.fy * c.y() / c.z() + k.cy);
-    if (u < 0 || u >= k.width || v < 0 || v >= k.height) continue;
-    const std::size_t block =
-        static_cast<std::size_t>(v / pixel_block_) * view.block_columns + u / pixel_block_;
-    if (view.nearest_depth[block] > c.z() + tolerance) {
-      return true;
-    }
+    const float x = std::round(static_cast<float>(k.fx * c.x() / c.z() + k.cx));
+    const float y = std::round(static_cast<float>(k.fy * c.y() / c.z() + k.cy));
+    if (!(x >= 0 && x < float(k.width) && y >= 0 && y < float(k.height))) continue;
+    const int u = static_cast<int>(x), v = static_cast<int>(y);
+    const float seen = view.nearest_depth[static_cast<std::size_t>(v / pixel_block_) *
+                                              view.block_columns +
+                                          u / pixel_block_];
+    // How far in front of the seen surface, along the normal: the depth gap along the ray
+    // (z to ray length: distance / z), projected on the normal.
+    const float in_front = (seen - c.z()) * (distance / c.z()) * facing;
+    if (in_front > tolerance) return Verdict::kSeenThrough;  // +infinity: nothing seen
+    verdict = Verdict::kSeen;
   }
-  return false;
+  return verdict;
 }
 
 }  // namespace meshvid

@@ -33,12 +33,23 @@ class SeenFreeSpace {
   /// Number of views that take part (0: nothing is ever in seen free space).
   int view_count() const { return static_cast<int>(views_.size()); }
 
-  /// Whether some camera's ray through `point`, on a surface with unit `normal` that camera
-  /// faces, met no surface up to `tolerance` past it: the point lies in front of the camera,
-  /// inside its image, and every pixel within the margin of its projection is empty or holds
-  /// a surface deeper than the point's depth + `tolerance`.
-  bool Contains(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
+  /// What the cameras say of a surface point with unit `normal`.
+  enum class Verdict {
+    kUnjudged,     ///< no camera faces it inside its image (behind, outside, grazing)
+    kSeen,         ///< the cameras facing it saw a surface at it or in front of it
+    kSeenThrough,  ///< some camera facing it saw through it
+  };
+  /// Judges `point` by every camera that faces the surface (within acos(min_facing_cosine))
+  /// and has the point in front of it and inside its image: seen through when the pixel (or
+  /// pixel block) it projects to saw nothing, or saw a surface more than `tolerance` behind
+  /// it, measured along the normal (a depth gap seen at an angle is longer).
+  Verdict Judge(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
                 float tolerance) const;
+  /// Whether some camera saw through `point` (Judge gives kSeenThrough).
+  bool Contains(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
+                float tolerance) const {
+    return Judge(point, normal, tolerance) == Verdict::kSeenThrough;
+  }
 
  private:
   struct View {

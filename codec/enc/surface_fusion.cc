@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -187,15 +188,18 @@ void KeepMainPieces(TriangleMesh* mesh, double min_share) {
   RemoveUnreferencedVertices(mesh);
 }
 
-// Removes the triangles of `mesh` whose centre is farther than `limit` from every point of
-// `data`, peeling from the boundary inwards: a far triangle goes only once it touches the
-// boundary (through triangles removed before it), so sparse data inside the surface makes no
-// hole.
+// Removes the triangles of `mesh` whose centre is farther than `limit` (when > 0) from every
+// point of `data`, or lies where a camera saw through it (`free_space`, by more than
+// `free_space_tolerance`), peeling from the boundary inwards: such a triangle goes only once
+// it touches the boundary (through triangles removed before it), so sparse or missing data
+// inside the surface makes no hole.
 void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
                     const SeenFreeSpace& free_space, float free_space_tolerance,
                     TriangleMesh* mesh) {
+  const bool measure = limit > 0 && !data.empty();
   const PointCloud cloud{data};
-  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  std::optional<PointTree> tree;
+  if (measure) tree.emplace(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
   const std::size_t count = mesh->triangles.size();
   std::vector<char> far(count);
   const float limit_squared = limit * limit;
@@ -204,10 +208,10 @@ void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
       const Triangle& t = mesh->triangles[i];
       const Eigen::Vector3f centre =
           (mesh->positions[t[0]] + mesh->positions[t[1]] + mesh->positions[t[2]]) / 3;
-      if (limit > 0 && !data.empty()) {
+      if (measure) {
         std::uint32_t nearest = 0;
         float squared = 0;
-        tree.knnSearch(centre.data(), 1, &nearest, &squared);
+        tree->knnSearch(centre.data(), 1, &nearest, &squared);
         far[i] = squared > limit_squared;
       }
       if (!far[i] && free_space.view_count() > 0) {
@@ -371,9 +375,12 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   if (!(max_extension < options.support_voxels * voxel)) max_extension = 0;  // no trim needed
   const SeenFreeSpace free_space(views, options.view_cameras, options.free_space_margin_pixels);
   if ((max_extension > 0 || free_space.view_count() > 0) && !result.triangles.empty()) {
+    // Within the volume's band the fusion itself averages the views (a small misregistration
+    // between them included), so the tolerance is at least the band.
+    const double tolerance = std::max(options.free_space_tolerance_spacings * sample_spacing,
+                                      options.truncation_voxels * voxel);
     TrimBeyondData(unthinned, static_cast<float>(max_extension), free_space,
-                   static_cast<float>(options.free_space_tolerance_spacings * sample_spacing),
-                   &result);
+                   static_cast<float>(tolerance), &result);
   }
   if (!result.triangles.empty()) KeepMainPieces(&result, options.min_piece_share);
   if (result.triangles.empty()) {

@@ -42,8 +42,9 @@ struct SurfaceFusionOptions {
   /// sample spacings, or where it met nothing. A sheet's surface then ends at its seen edge,
   /// while a closed body's surface turning away out of sight stays.
   std::vector<ViewCalibration> view_cameras;
-  /// How far in front of what a camera saw a surface must lie to be removed, in sample
-  /// spacings (the data's noise and the fusion's smoothing stay within it).
+  /// How far in front of what a camera saw a surface must lie to be removed, along its
+  /// normal, in sample spacings (the data's noise stays within it); never less than the
+  /// volume's band (truncation_voxels voxels), within which the fusion averages the views.
   double free_space_tolerance_spacings = 2;
   /// A pixel counts as seen through only when the pixels this close to it are as well.
   int free_space_margin_pixels = 0;

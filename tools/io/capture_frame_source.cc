@@ -19,9 +19,12 @@ StatusOr<std::vector<TriangleMesh>> CaptureFrameSource::LoadFrame(int frame) con
 
 std::vector<ViewCalibration> CaptureFrameSource::view_cameras() const {
   std::vector<ViewCalibration> cameras;
+  bool any_usable = false;
   for (int view = 0; view < capture_->view_count(); ++view) {
     cameras.push_back(capture_->view_camera(view));
+    any_usable |= cameras.back().intrinsics.has_value() && cameras.back().has_extrinsics;
   }
+  if (!any_usable) cameras.clear();
   return cameras;
 }
 

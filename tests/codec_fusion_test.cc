@@ -449,6 +449,9 @@ TEST(SeenFreeSpaceTest, InFrontOfTheDataOrPastItsEdgeWhereTheCameraFacesTheSurfa
   EXPECT_EQ(free_space.Judge({0.05f, 0.02f, 0}, up, 0.01f), SeenFreeSpace::Verdict::kSeen);
   EXPECT_EQ(free_space.Judge({0.21f, 0, 0}, grazing, 0.01f), SeenFreeSpace::Verdict::kUnjudged);
   EXPECT_EQ(free_space.Judge({5, 0, 0}, up, 0.01f), SeenFreeSpace::Verdict::kUnjudged);
+  // A surface facing away from the camera (the far side of a part whose near side was lost
+  // at a grazing angle) is not judged.
+  EXPECT_EQ(free_space.Judge({0.21f, 0, 0}, -up, 0.01f), SeenFreeSpace::Verdict::kUnjudged);
   // The gap is measured along the normal: 5 cm above the sheet, seen at 55 degrees from its
   // normal, is 8.7 cm along the ray.
   const float angle = 55 * static_cast<float>(M_PI) / 180;

@@ -138,8 +138,10 @@ SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
     const Eigen::Vector3f c = view.camera_from_world * point;
     if (!(c.z() > 0)) continue;
     const float distance = c.norm();
-    // Cosine between the surface's normal and the ray (either side).
-    const float facing = std::abs((view.camera_from_world.linear() * normal).dot(c)) / distance;
+    // Cosine between the surface's normal and the direction to the camera. A surface facing
+    // away is judged by no camera: the front surface that should hide it from this camera may
+    // have been lost at a grazing angle (the far side of an arm seen edge-on).
+    const float facing = -(view.camera_from_world.linear() * normal).dot(c) / distance;
     if (!(facing >= min_facing_cosine_)) continue;
     const PinholeIntrinsics& k = view.intrinsics;
     const float x = std::round(static_cast<float>(k.fx * c.x() / c.z() + k.cx));

@@ -22,9 +22,10 @@ class SeenFreeSpace {
   /// has no intrinsics or no pose (ViewCalibration::has_extrinsics) are left out, as are views
   /// beyond cameras.size(). Each pixel then holds the nearest depth within `margin_pixels` of
   /// it (a square window), so a point just off the edge of the data is not yet in free space.
-  /// A camera speaks only for surface it faces: within acos(`min_facing_cosine`) of the
-  /// surface's normal (either side). Sensors lose samples at grazing angles (a simulated one
-  /// past 75 degrees), and there a pixel's depth changes faster than its position is known.
+  /// A camera speaks only for surface facing it: its normal (pointing out of the object)
+  /// within acos(`min_facing_cosine`) of the direction to the camera. Sensors lose samples at
+  /// grazing angles (a simulated one past 75 degrees), so a surface seen edge-on may leave its
+  /// pixels empty, and the far side behind it then looks seen through.
   /// With `pixel_block` > 1 each block of that many pixels squared keeps its nearest depth
   /// only (a quarter of the memory at 2, and a coarser edge).
   SeenFreeSpace(std::span<const TriangleMesh> views, std::span<const ViewCalibration> cameras,
@@ -35,11 +36,11 @@ class SeenFreeSpace {
 
   /// What the cameras say of a surface point with unit `normal`.
   enum class Verdict {
-    kUnjudged,     ///< no camera faces it inside its image (behind, outside, grazing)
+    kUnjudged,     ///< no camera it faces has it inside its image (behind, outside, grazing)
     kSeen,         ///< the cameras facing it saw a surface at it or in front of it
     kSeenThrough,  ///< some camera facing it saw through it
   };
-  /// Judges `point` by every camera that faces the surface (within acos(min_facing_cosine))
+  /// Judges `point` by every camera the surface faces (within acos(min_facing_cosine))
   /// and has the point in front of it and inside its image: seen through when the pixel (or
   /// pixel block) it projects to saw nothing, or saw a surface more than `tolerance` behind
   /// it, measured along the normal (a depth gap seen at an angle is longer).

@@ -241,6 +241,7 @@ TEST(KeyGroups, ASheetWhoseEdgeRecedesEndsTheKeyGroupWhereACameraSeesPastIt) {
   StatusOr<EncodeSummary> summary = EncodeCapture(
       *source, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
+  EXPECT_EQ(summary->free_space_views, 1);
   EXPECT_GT(summary->key_groups[0].cut_seen_through, 0.02);
   EXPECT_LT(summary->key_groups[0].cut_unexplained, 0.02);
   const std::size_t with_cameras = summary->key_groups.size();

@@ -197,6 +197,9 @@ struct KeyGroupSummary {
 struct EncodeSummary {
   int frames = 0;
   int views = 0;
+  /// Views whose calibrated camera (intrinsics and pose) the encoder used to find space they
+  /// saw through (EncoderTuning::seen_free_space; 0: none).
+  int free_space_views = 0;
   std::vector<KeyGroupSummary> key_groups;
   // Key group 0's base and lattice; segment figures are means over the key groups.
   std::size_t base_vertices = 0;

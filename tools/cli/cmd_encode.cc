@@ -120,6 +120,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["levels"] = args.options.levels;
   j["frames"] = s.frames;
   j["views"] = s.views;
+  j["free_space_views"] = s.free_space_views;
   j["frame_rate"] = s.frame_rate;
   j["base_vertices"] = s.base_vertices;
   j["samples_per_frame"] = s.samples_per_frame;
@@ -183,6 +184,12 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),
                Kilobytes(b.total_bytes).c_str(), Kilobytes(b.total_bytes / frames).c_str(),
                MbitPerSecond(s), s.frame_rate);
+  if (s.free_space_views > 0) {
+    std::fprintf(stderr,
+                 "  free space    %d of %d views calibrated: bases end, and key groups end, "
+                 "where a camera saw through the surface\n",
+                 s.free_space_views, s.views);
+  }
 }
 
 int RunEncode(EncodeArguments args) {

@@ -15,16 +15,16 @@ $s0 << EOD
 68.9138 52.5383
 EOD
 $s1 << EOD
-2.48512 52.6107
-4.03534 52.6108
+2.72975 52.4690
+4.24729 52.4674
 EOD
 $s2 << EOD
-2.48512 52.6841
-4.03534 52.6874
+2.72975 52.5386
+4.24729 52.5457
 EOD
 $s3 << EOD
-2.48512 52.7302
-4.03534 52.7280
+2.72975 52.5853
+4.24729 52.5879
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 97.6672 62.4800
 EOD
 $s1 << EOD
-1.32138 60.7517
-2.21192 60.8577
+2.27354 62.4712
+3.49616 62.4765
 EOD
 $s2 << EOD
-1.32138 60.8145
-2.21192 60.8962
+2.27354 62.6676
+3.49616 62.6824
 EOD
 $s3 << EOD
-1.32138 60.8136
-2.21192 60.8758
+2.27354 62.7321
+3.49616 62.7402
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 64.0333 62.0679
 EOD
 $s1 << EOD
-1.46092 60.1777
-2.33101 60.3193
+2.27138 62.2383
+3.42316 62.2937
 EOD
 $s2 << EOD
-1.46092 60.2923
-2.33101 60.4049
+2.27138 62.4945
+3.42316 62.5679
 EOD
 $s3 << EOD
-1.46092 60.2906
-2.33101 60.3788
+2.27138 62.5889
+3.42316 62.6458
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

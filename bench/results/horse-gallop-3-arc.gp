@@ -15,16 +15,16 @@ $s0 << EOD
 100.891 35.1902
 EOD
 $s1 << EOD
-2.62849 35.2434
-3.99622 35.2335
+2.73428 35.1808
+4.10192 35.1709
 EOD
 $s2 << EOD
-2.62849 35.2449
-3.99622 35.2404
+2.73428 35.1797
+4.10192 35.1752
 EOD
 $s3 << EOD
-2.62849 35.2492
-3.99622 35.2435
+2.73428 35.1833
+4.10192 35.1788
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

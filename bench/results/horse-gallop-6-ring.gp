@@ -15,16 +15,16 @@ $s0 << EOD
 143.024 55.0420
 EOD
 $s1 << EOD
-3.1144 55.1195
-5.10653 55.1337
+3.13686 55.0021
+5.11273 55.0175
 EOD
 $s2 << EOD
-3.1144 55.3184
-5.10653 55.3844
+3.13686 55.2002
+5.11273 55.2575
 EOD
 $s3 << EOD
-3.1144 55.4175
-5.10653 55.4607
+3.13686 55.2873
+5.11273 55.3411
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

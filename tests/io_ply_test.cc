@@ -271,6 +271,21 @@ TEST(PlyErrorTest, TruncatedBinaryVertices) {
               "truncated binary PLY: expected 4 vertex elements, file ends after 2");
 }
 
+TEST(PlyErrorTest, BinaryVerticesOneByteShortAreTruncatedNotReadPastTheEnd) {
+  // Found by the fuzz smoke: 4 rows of 20 bytes in 79 bytes were let through by an ascii
+  // allowance for a missing final newline, and the reader ran one byte past the buffer.
+  Bytes body(true);
+  for (int i = 0; i < 4; ++i) body.Put<double>(0.0).Put<double>(1.0).Put<std::uint32_t>(2);
+  std::string bytes = body.str();
+  bytes.pop_back();
+  const std::string header =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty double x\n"
+      "property double y\nproperty uint32 z\nelement face 0\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  ExpectError(ParseString(header + bytes), StatusCode::kCorrupt,
+              "truncated binary PLY: expected 4 vertex elements, file ends after 3");
+}
+
 TEST(PlyErrorTest, TruncatedBinaryFaces) {
   Bytes body(false);
   for (int i = 0; i < 9; ++i) body.Put<float>(static_cast<float>(i));

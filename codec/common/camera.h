@@ -32,6 +32,13 @@ struct ViewCalibration {
   /// Maps camera-frame points to world points (the camera's pose). Identity if unknown.
   Eigen::Isometry3d world_from_camera = Eigen::Isometry3d::Identity();
   bool has_extrinsics = false;
+
+  /// Whether points can be projected into this view's image: intrinsics with a positive
+  /// image size and focal lengths, and a known pose.
+  bool CanProject() const {
+    return intrinsics && has_extrinsics && intrinsics->width > 0 && intrinsics->height > 0 &&
+           intrinsics->fx > 0 && intrinsics->fy > 0;
+  }
 };
 
 }  // namespace meshvid

@@ -49,12 +49,11 @@ inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 
 /// Whether the tracked surface still explains a frame: its unexplained share, its stray
 /// share and its seen-through share have each grown by at most `threshold` over the key
-/// frame's (where the base was
-/// fused from the data itself), counted as at most kMostUnexplainedAtKeyFrame (a key frame
-/// whose fusion failed does not excuse the frames after it); and no part of the surface is
-/// farther from the data than the key frame's farthest plus the stray distance (a patch the
-/// motion threw away, however small). A frame without data is explained (nothing
-/// contradicts the motion).
+/// frame's (where the base was fused from the data itself), counted as at most
+/// kMostUnexplainedAtKeyFrame (a key frame whose fusion failed does not excuse the frames
+/// after it); and no part of the surface is farther from the data than the key frame's
+/// farthest plus the stray distance (a patch the motion threw away, however small). A frame
+/// without data is explained (nothing contradicts the motion).
 bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold);
 
 }  // namespace meshvid

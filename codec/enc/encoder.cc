@@ -198,8 +198,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();
   for (int v = 0; v < std::min<int>(source.view_count(), ctx.view_cameras.size()); ++v) {
-    const ViewCalibration& camera = ctx.view_cameras[v];
-    summary.free_space_views += camera.intrinsics.has_value() && camera.has_extrinsics;
+    summary.free_space_views += ctx.view_cameras[v].CanProject();
   }
   summary.scale = scale;
   summary.tolerance = ctx.lengths.tolerance;

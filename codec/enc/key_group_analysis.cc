@@ -424,7 +424,8 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     if ((t - start) % stride == 0) continue;
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+    // Tracked only, never measured by the key-group fit: no free space needed.
+    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
     tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
                                    std::span(tracks.data(), std::size_t(t - start)));
   }
@@ -489,7 +490,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {
-      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+      MESHVID_ASSIGN_OR_RETURN(
+          proxies[start], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     }
     MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
@@ -567,7 +569,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+    MESHVID_ASSIGN_OR_RETURN(
+        proxies[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     tracks.push_back(TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t], tracks));
     if (!explained(t, proxies[t])) {
       tracks.pop_back();

@@ -22,8 +22,8 @@ void Rasterise(const TriangleMesh& mesh, const Eigen::Isometry3f& camera_from_wo
       projected[i] = Eigen::Vector3f(0, 0, -1);
       continue;
     }
-    projected[i] = Eigen::Vector3f(static_cast<float>(k.fx * c.x() / c.z() + k.cx),
-                                   static_cast<float>(k.fy * c.y() / c.z() + k.cy), c.z());
+    const Eigen::Vector2f pixel = k.Project(c.cast<double>()).cast<float>();
+    projected[i] = Eigen::Vector3f(pixel.x(), pixel.y(), c.z());
     // The vertex itself is a sample, whatever the triangles around it look like.
     const float x = std::round(projected[i].x()), y = std::round(projected[i].y());
     if (x >= 0 && x < float(width) && y >= 0 && y < float(height)) {
@@ -99,12 +99,10 @@ SeenFreeSpace::SeenFreeSpace(std::span<const TriangleMesh> views,
   std::vector<std::size_t> source;  // the input view each kept view rasterises
   for (std::size_t i = 0; i < std::min(views.size(), cameras.size()); ++i) {
     const ViewCalibration& camera = cameras[i];
-    if (!camera.intrinsics || !camera.has_extrinsics) continue;
-    const PinholeIntrinsics& k = *camera.intrinsics;
-    if (k.width <= 0 || k.height <= 0 || !(k.fx > 0) || !(k.fy > 0)) continue;
+    if (!camera.CanProject()) continue;
     View view;
     view.camera_from_world = camera.world_from_camera.inverse().cast<float>();
-    view.intrinsics = k;
+    view.intrinsics = *camera.intrinsics;
     views_.push_back(std::move(view));
     source.push_back(i);
   }
@@ -144,8 +142,8 @@ SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
     const float facing = -(view.camera_from_world.linear() * normal).dot(c) / distance;
     if (!(facing >= min_facing_cosine_)) continue;
     const PinholeIntrinsics& k = view.intrinsics;
-    const float x = std::round(static_cast<float>(k.fx * c.x() / c.z() + k.cx));
-    const float y = std::round(static_cast<float>(k.fy * c.y() / c.z() + k.cy));
+    const Eigen::Vector2f pixel = k.Project(c.cast<double>()).cast<float>();
+    const float x = std::round(pixel.x()), y = std::round(pixel.y());
     if (!(x >= 0 && x < float(k.width) && y >= 0 && y < float(k.height))) continue;
     const int u = static_cast<int>(x), v = static_cast<int>(y);
     const float seen = view.nearest_depth[static_cast<std::size_t>(v / pixel_block_) *

@@ -199,7 +199,9 @@ void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
   const bool measure = limit > 0 && !data.empty();
   const PointCloud cloud{data};
   std::optional<PointTree> tree;
-  if (measure) tree.emplace(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  if (measure) {
+    tree.emplace(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  }
   const std::size_t count = mesh->triangles.size();
   std::vector<char> far(count);
   const float limit_squared = limit * limit;

@@ -22,7 +22,7 @@ std::vector<ViewCalibration> CaptureFrameSource::view_cameras() const {
   bool any_usable = false;
   for (int view = 0; view < capture_->view_count(); ++view) {
     cameras.push_back(capture_->view_camera(view));
-    any_usable |= cameras.back().intrinsics.has_value() && cameras.back().has_extrinsics;
+    any_usable |= cameras.back().CanProject();
   }
   if (!any_usable) cameras.clear();
   return cameras;

@@ -33,7 +33,8 @@ class CaptureFrameSource : public FrameSource {
   /// The views of `frame`, parsed from their files unless among the last kCachedFrames.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const override;
   /// The views' calibration, posed as their meshes are loaded (a Stanford .conf's poses
-  /// included); empty when no view has both intrinsics and a pose (what SeenFreeSpace needs).
+  /// included); empty when no view can project (ViewCalibration::CanProject, what
+  /// SeenFreeSpace needs).
   std::vector<ViewCalibration> view_cameras() const override;
 
  private:

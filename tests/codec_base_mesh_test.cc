@@ -118,6 +118,41 @@ TEST(BaseMeshCoderTest, DamagedStreamsFailCleanly) {
   EXPECT_EQ(DecodeBaseMesh({}).status().code(), StatusCode::kCorrupt);
 }
 
+TEST(BaseMeshCoderTest, ForgedCountsAndOtherDracoVersionsAreRefusedBeforeDracoAllocates) {
+  // A grid that sits on the 8-bit lattice codes 130k triangles in under 400 bytes, so no
+  // bound on triangles per byte is safe; the cap is on the count itself. (Every one of its
+  // vertices has several candidates within a quantisation step: the encoder's search for
+  // Draco's order once recursed once per vertex here and overflowed the stack.)
+  BaseMeshEncoding settings;
+  settings.position_bits = 8;
+  const TriangleMesh grid = testing::MakeGridPlane(1.0f, 255);
+  auto encoded = EncodeBaseMesh(grid, settings);
+  ASSERT_TRUE(encoded.ok()) << encoded.status().message();
+  EXPECT_EQ(encoded->decoded.triangle_count(), grid.triangle_count());
+  EXPECT_LT(encoded->bytes.size(), 400u);
+
+  // Edgebreaker stream declaring 2^28 triangles.
+  std::vector<std::uint8_t> forged = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, 0, 0,
+                                      0x10, 0x80, 0x80, 0x80, 0x80, 0x01};
+  forged.resize(24, 0);
+  auto decoded = DecodeBaseMesh(forged);
+  ASSERT_FALSE(decoded.ok());
+  EXPECT_EQ(decoded.status().code(), StatusCode::kCorrupt);
+  EXPECT_NE(decoded.status().message().find("268435456 triangles"), std::string::npos)
+      << decoded.status().message();
+  // The same bytes as bitstream 1.1: the fuzzed stream that asked Draco for 4.4 GB was one.
+  forged[5] = 1;
+  forged[6] = 1;
+  EXPECT_NE(DecodeBaseMesh(forged).status().message().find("version 1.1"), std::string::npos);
+  // A point cloud, and a mesh with metadata.
+  forged = encoded->bytes;
+  forged[7] = 0;
+  EXPECT_NE(DecodeBaseMesh(forged).status().message().find("not a mesh"), std::string::npos);
+  forged = encoded->bytes;
+  forged[10] |= 0x80;
+  EXPECT_NE(DecodeBaseMesh(forged).status().message().find("metadata"), std::string::npos);
+}
+
 TEST(BaseMeshCoderTest, RejectsInvalidSettingsAndMeshes) {
   BaseMeshEncoding settings;
   settings.position_bits = 0;

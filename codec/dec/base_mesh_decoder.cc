@@ -3,13 +3,77 @@
 #include <array>
 #include <string>
 
+#include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 #include <draco/mesh/mesh.h>
 
+#include "format/byte_io.h"
+
 namespace meshvid {
 
+namespace {
+
+/// Reads a Draco varUI32 (7 bits per byte, least significant group first, at most 5 bytes).
+StatusOr<std::uint32_t> ReadDracoVarU32(ByteReader& reader, std::string_view what) {
+  std::uint64_t value = 0;
+  for (int shift = 0; shift < 35; shift += 7) {
+    MESHVID_ASSIGN_OR_RETURN(const std::uint8_t byte, reader.ReadU8(what));
+    value |= static_cast<std::uint64_t>(byte & 0x7f) << shift;
+    if ((byte & 0x80) == 0) {
+      if (value > 0xffffffffu) break;
+      return static_cast<std::uint32_t>(value);
+    }
+  }
+  return reader.Error(std::string(what) + " is not a 32-bit varint");
+}
+
+/// Checks the Draco header and the connectivity counts before Draco sees the stream: a
+/// triangle mesh of the bitstream version Draco 1.5 writes (2.2), no metadata, and counts
+/// within kMaxBaseMeshTriangles (Draco allocates its connectivity from the declared counts
+/// before it reads a symbol, so a few forged bytes could otherwise ask for gigabytes).
+Status CheckDracoHeader(std::span<const std::uint8_t> bytes) {
+  ByteReader reader(bytes, "base mesh");
+  MESHVID_ASSIGN_OR_RETURN(const auto magic, reader.ReadBytes(5, "Draco magic"));
+  if (std::string_view(reinterpret_cast<const char*>(magic.data()), 5) != "DRACO") {
+    return reader.Error("not a Draco stream (no DRACO magic)");
+  }
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t major, reader.ReadU8("Draco major version"));
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t minor, reader.ReadU8("Draco minor version"));
+  if (major != draco::kDracoMeshBitstreamVersionMajor ||
+      minor != draco::kDracoMeshBitstreamVersionMinor) {
+    return reader.Error("Draco bitstream version " + std::to_string(major) + "." +
+                        std::to_string(minor) + " is not the version 2.2 this format uses");
+  }
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t encoder_type, reader.ReadU8("Draco encoder type"));
+  if (encoder_type != draco::TRIANGULAR_MESH) return reader.Error("Draco stream is not a mesh");
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t method, reader.ReadU8("Draco encoder method"));
+  MESHVID_ASSIGN_OR_RETURN(const std::uint16_t flags, reader.ReadU16("Draco flags"));
+  if (flags & METADATA_FLAG_MASK) return reader.Error("Draco stream carries metadata");
+  std::uint32_t triangles = 0;
+  std::uint32_t vertices = 0;
+  if (method == draco::MESH_SEQUENTIAL_ENCODING) {  // faces, then points
+    MESHVID_ASSIGN_OR_RETURN(triangles, ReadDracoVarU32(reader, "Draco face count"));
+    MESHVID_ASSIGN_OR_RETURN(vertices, ReadDracoVarU32(reader, "Draco point count"));
+  } else if (method == draco::MESH_EDGEBREAKER_ENCODING) {  // traversal, vertices, faces
+    MESHVID_RETURN_IF_ERROR(reader.Skip(1, "Draco traversal type"));
+    MESHVID_ASSIGN_OR_RETURN(vertices, ReadDracoVarU32(reader, "Draco vertex count"));
+    MESHVID_ASSIGN_OR_RETURN(triangles, ReadDracoVarU32(reader, "Draco face count"));
+  } else {
+    return reader.Error("unknown Draco encoder method " + std::to_string(method));
+  }
+  if (triangles > kMaxBaseMeshTriangles || vertices > 3 * std::uint64_t{kMaxBaseMeshTriangles}) {
+    return reader.Error("Draco stream declares " + std::to_string(triangles) + " triangles and " +
+                        std::to_string(vertices) + " vertices, more than a base mesh may have (" +
+                        std::to_string(kMaxBaseMeshTriangles) + " triangles)");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes) {
+  MESHVID_RETURN_IF_ERROR(CheckDracoHeader(bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   draco::Decoder decoder;

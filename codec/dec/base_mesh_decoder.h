@@ -10,9 +10,16 @@
 
 namespace meshvid {
 
+/// Most triangles a base mesh may have (and three times as many vertices). Base meshes are
+/// coarse (the reference encoder's are tens of thousands of triangles); the cap bounds what a
+/// damaged stream can make the decoder allocate.
+inline constexpr std::uint32_t kMaxBaseMeshTriangles = 1u << 22;
+
 /// Decodes a Draco-coded triangle mesh (positions and triangles; other attributes ignored).
 /// The vertex order is Draco's: encoder and decoder both use this decoded mesh, so they agree.
-/// Fails with kCorrupt on malformed input and on a mesh that does not pass ValidateMesh.
+/// Fails with kCorrupt on malformed input, on a stream that is not a Draco 2.2 triangle mesh
+/// without metadata, on counts over kMaxBaseMeshTriangles, and on a mesh that does not pass
+/// ValidateMesh.
 StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes);
 
 }  // namespace meshvid

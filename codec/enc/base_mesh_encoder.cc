@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <map>
 #include <string>
 
@@ -58,6 +57,12 @@ StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEnc
 
 Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings) {
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "base mesh"));
+  if (mesh.triangle_count() > kMaxBaseMeshTriangles ||
+      mesh.vertex_count() > 3 * std::size_t{kMaxBaseMeshTriangles}) {
+    return InvalidArgumentError("a base mesh may have at most " +
+                                std::to_string(kMaxBaseMeshTriangles) + " triangles, got " +
+                                std::to_string(mesh.triangle_count()));
+  }
   if (settings.position_bits < 1 || settings.position_bits > 30) {
     return InvalidArgumentError("base mesh position bits must be in 1..30, got " +
                                 std::to_string(settings.position_bits));
@@ -157,21 +162,41 @@ bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int po
     }
     return true;
   };
+  // Depth-first over `left` with an explicit stack (a recursion as deep as `left` is long
+  // overflows the stack on large ambiguous meshes): next_choice[i] is the index of the next
+  // candidate of left[i] to try.
   int budget = 100000;  // assignments tried before giving up (the sequential coder then)
-  std::function<bool(std::size_t)> place = [&](std::size_t i) {
-    if (i == left.size()) return true;
+  std::vector<std::size_t> next_choice(left.size(), 0);
+  std::size_t i = 0;
+  while (i < left.size()) {
     const std::uint32_t v = left[i];
-    for (std::uint32_t w : candidates.at(v)) {
-      if (taken[w] || --budget < 0) continue;
-      taken[w] = 1;
-      (*vertex_in_decoded)[v] = w;
-      if (consistent(v) && place(i + 1)) return true;
-      taken[w] = 0;
+    const std::vector<std::uint32_t>& choices = candidates.at(v);
+    if ((*vertex_in_decoded)[v] != kUnplaced) {  // back here after a failure further on
+      taken[(*vertex_in_decoded)[v]] = 0;
       (*vertex_in_decoded)[v] = kUnplaced;
     }
-    return false;
-  };
-  return place(0);
+    bool placed = false;
+    while (next_choice[i] < choices.size() && !placed) {
+      const std::uint32_t w = choices[next_choice[i]++];
+      if (taken[w]) continue;
+      if (--budget < 0) return false;
+      taken[w] = 1;
+      (*vertex_in_decoded)[v] = w;
+      placed = consistent(v);
+      if (!placed) {
+        taken[w] = 0;
+        (*vertex_in_decoded)[v] = kUnplaced;
+      }
+    }
+    if (placed) {
+      ++i;
+      continue;
+    }
+    if (i == 0) return false;
+    next_choice[i] = 0;
+    --i;
+  }
+  return true;
 }
 
 /// Finds where Draco put every input vertex and triangle (MatchVertices), and checks that the

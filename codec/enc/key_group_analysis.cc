@@ -169,6 +169,16 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
   std::size_t registered = 0;
   for (std::int32_t label : segmentation.labels) registered += label >= 0;
   summary->registered_share = double(registered) / double(base.mesh.vertex_count());
+  // No segment: a user's base that misses the data is an error. A base fused from the key
+  // frame explains that frame; its vertices are left to the patches below (a surface folding
+  // on itself can defeat every segment's seed), and the key-group fit ends the key group where
+  // they no longer explain the data.
+  if (segmentation.segment_count == 0 && options.base_mesh) {
+    return InvalidArgumentError(
+        "no rigid segment found: the base mesh does not match the data (fewer than " +
+        std::to_string(seg.min_segment_vertices) + " connected vertices within the tolerance " +
+        std::to_string(seg.tolerance) + " over the frames)");
+  }
   result.labels = segmentation.labels;
   result.segment_count = segmentation.segment_count;
   if (options.tuning.patch_vertices > 0) {
@@ -191,6 +201,12 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
     result.segment_count =
         MergePatchesIntoSegments(base, segmentation.segment_count, result.segment_count, seg,
                                  &result.labels, &segmentation.transforms);
+  }
+  if (result.segment_count == 0) {
+    // No segment and no patches: the base stays where it is, as one piece.
+    result.labels.assign(base.mesh.vertex_count(), 0);
+    result.segment_count = 1;
+    for (auto& frame : segmentation.transforms) frame.assign(1, RigidTransform{});
   }
   result.soft_from = segmentation.segment_count;
   if (options.tuning.graph_tracking && options.tuning.graph_node_vertices > 0) {

@@ -601,12 +601,6 @@ StatusOr<Segmentation> SegmentPiecewiseRigid(const BaseTopology& topology,
     segment_tracks.push_back(track);
     ++result.segment_count;
   }
-  if (result.segment_count == 0) {
-    return InvalidArgumentError(
-        "no rigid segment found: the base mesh does not match the data (fewer than " +
-        std::to_string(min_size) + " connected vertices within the tolerance " +
-        std::to_string(options.tolerance) + " over the frames)");
-  }
   return result;
 }
 

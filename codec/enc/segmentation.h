@@ -56,7 +56,9 @@ struct Segmentation {
 /// `targets` (null entries are frames without data). Each segment starts as a patch around a
 /// seed vertex (the middle of the largest region still free and seen in the first frame with
 /// data), is tracked through the frames, then grows over every unsegmented vertex that
-/// follows its track. Reports progress per segment attempt.
+/// follows its track. Reports progress per segment attempt. No segment at all (segment_count
+/// 0, every vertex kUnregistered) means no connected region of the base, min_segment_vertices
+/// large, lies within the tolerance of the data through the frames: the caller decides.
 StatusOr<Segmentation> SegmentPiecewiseRigid(const BaseTopology& base, FrameTargets targets,
                                              const SegmentationOptions& options,
                                              const ProgressCallback& progress = {});

@@ -165,6 +165,35 @@ TEST(DataFit, WithNormalsSamplesMayBeSparserThanTheDistance) {
   EXPECT_EQ(MeasureDataFit(samples, off, 0.02f, 1.0f, normals).unexplained_share, 1);
 }
 
+TEST(DataFit, SliversReachAcrossTheirLength) {
+  // A strip of slivers 1 long and 0.02 wide (a quadric-decimated cylinder's straight side):
+  // samples at the corners only, 1 apart along the strip, 0.02 across it.
+  std::vector<Eigen::Vector3f> samples, normals, points;
+  std::vector<Triangle> triangles;
+  for (int i = 0; i <= 4; ++i) {
+    for (int j = 0; j <= 20; ++j) {
+      samples.emplace_back(float(i), 0.02f * j, 0);
+      normals.emplace_back(0, 0, 1);
+    }
+  }
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    for (std::uint32_t j = 0; j < 20; ++j) {
+      const std::uint32_t a = i * 21 + j, b = a + 21;
+      triangles.push_back({a, b, b + 1});
+      triangles.push_back({a, b + 1, a + 1});
+    }
+  }
+  for (int i = 0; i < 40; ++i) points.emplace_back(0.1f * i + 0.05f, 0.2f, 0.005f);
+  // The median spacing (0.02) says most points lie beyond an edge; the slivers' reach not.
+  EXPECT_GT(MeasureDataFit(samples, points, 0.01f, 1.0f, normals).unexplained_share, 0.5);
+  const std::vector<float> reach = SampleReach(samples, triangles);
+  EXPECT_NEAR(reach[21 + 10], 0.5f * std::hypot(1.0f, 0.02f), 1e-5f);
+  EXPECT_EQ(MeasureDataFit(samples, points, 0.01f, 1.0f, normals, reach).unexplained_share, 0);
+  // Beyond the strip's side or its end, and too far along the normal, still unexplained.
+  const std::vector<Eigen::Vector3f> off = {{2.5f, 0.6f, 0}, {4.7f, 0.2f, 0}, {2.5f, 0.2f, 0.02f}};
+  EXPECT_EQ(MeasureDataFit(samples, off, 0.01f, 1.0f, normals, reach).unexplained_share, 1);
+}
+
 TEST(KeyGroups, AJumpStartsANewKeyGroupExactlyThere) {
   const std::vector<TriangleMesh> frames = TwoBodyFrames(10, 0.01f, 6);
   const Encoded encoded = Encode(frames, TestOptions());

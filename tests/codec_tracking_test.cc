@@ -256,5 +256,25 @@ TEST(KeyGroupFallback, AFoldedElbowThatDefeatsEverySegmentStillEncodesEveryFrame
   }
 }
 
+// A still cylinder decimates into slivers along its straight side: their samples lie far
+// apart along the sliver, and the key frame's own base once seemed to leave half its data
+// unexplained, so every frame became a key frame.
+TEST(KeyGroupsOfACylinder, AStillCylinderStaysOneKeyGroup) {
+  std::vector<std::vector<TriangleMesh>> views(4, {BentCylinder(120, 64, 0)});
+  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
+  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  EncoderOptions options;
+  options.base_vertices = 600;
+  options.codec = VideoCodec::kFfv1;
+  options.gof_size = 4;
+  options.tuning.proxy_fraction = 0.25;
+  StatusOr<EncodeSummary> summary = EncodeCapture(
+      *source, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
+  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
+  ASSERT_EQ(summary->key_groups.size(), 1u);
+  EXPECT_EQ(summary->key_groups[0].frames, 4);
+  EXPECT_LT(summary->key_groups[0].key_frame_unexplained, 0.02);
+}
+
 }  // namespace
 }  // namespace meshvid

@@ -39,7 +39,8 @@ float SampleSpacing(const PointTree& tree, std::span<const Eigen::Vector3f> samp
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
                        float representable_distance, float stray_distance,
-                       std::span<const Eigen::Vector3f> sample_normals) {
+                       std::span<const Eigen::Vector3f> sample_normals,
+                       std::span<const float> sample_reach) {
   DataFit fit;
   fit.points = data_points.size();
   if (data_points.empty()) return fit;
@@ -54,6 +55,7 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   const bool along_normals = sample_normals.size() == surface_samples.size();
   const float across_limit =
       along_normals ? representable_distance + SampleSpacing(tree, surface_samples) : 0;
+  const bool reach_per_sample = sample_reach.size() == surface_samples.size();
   const Sums sums = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, data_points.size(), 2048), Sums{},
       [&](const tbb::blocked_range<std::size_t>& range, Sums partial) {
@@ -66,7 +68,11 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
             const Eigen::Vector3f offset = data_points[i] - surface_samples[nearest];
             const float along = std::abs(sample_normals[nearest].dot(offset));
             const float across = std::sqrt(std::max(0.0f, squared - along * along));
-            partial.unexplained += along > representable_distance || across > across_limit;
+            const float limit =
+                reach_per_sample
+                    ? std::max(across_limit, representable_distance + sample_reach[nearest])
+                    : across_limit;
+            partial.unexplained += along > representable_distance || across > limit;
           } else {
             partial.unexplained += squared > limit_squared;
           }
@@ -110,6 +116,19 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   fit.farthest_from_data = std::sqrt(double(strays.farthest_squared));
   fit.stray_distance = stray_distance;
   return fit;
+}
+
+std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
+                               std::span<const Triangle> triangles) {
+  std::vector<float> reach(samples.size(), 0.0f);
+  for (const Triangle& t : triangles) {
+    float longest = 0;
+    for (int c = 0; c < 3; ++c) {
+      longest = std::max(longest, (samples[t[c]] - samples[t[(c + 1) % 3]]).norm());
+    }
+    for (int c = 0; c < 3; ++c) reach[t[c]] = std::max(reach[t[c]], 0.5f * longest);
+  }
+  return reach;
 }
 
 bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold) {

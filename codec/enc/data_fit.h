@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "codec/common/mesh.h"
+
 namespace meshvid {
 
 /// The fit of captured points to a surface given by dense samples of it.
@@ -35,12 +37,21 @@ struct DataFit {
 /// from its nearest sample; with `sample_normals` (one per sample), when it is farther than
 /// that along the sample's normal (what a displacement can reach) or farther across it than
 /// that plus the samples' spacing (beyond the surface's edge), so samples need not be denser
-/// than the distance. A surface sample strays when it is farther than `stray_distance` from
-/// every data point.
+/// than the distance. The spacing is the median distance between neighbouring samples, or per
+/// sample the larger of that and `sample_reach[i]` when given (SampleReach: a sliver's samples
+/// are far apart along it). A surface sample strays when it is farther than `stray_distance`
+/// from every data point.
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
                        float representable_distance, float stray_distance,
-                       std::span<const Eigen::Vector3f> sample_normals = {});
+                       std::span<const Eigen::Vector3f> sample_normals = {},
+                       std::span<const float> sample_reach = {});
+
+/// Per sample of a triangulated sampling (`triangles` over `samples`), how far across the
+/// surface a point may lie from it and still be nearest to it: half the longest edge of the
+/// triangles around it.
+std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
+                               std::span<const Triangle> triangles);
 
 /// The share of a key frame's points its own base may leave unexplained: beyond it the fusion
 /// failed (a Poisson surface that lost most of the subject). Measured on key frames: samba

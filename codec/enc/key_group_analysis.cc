@@ -74,7 +74,7 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
   EvaluateSampleFrames(lattice, lattice.levels(), base.positions, ComputeVertexNormals(base),
                        &samples, &directions);
   return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity(),
-                        directions);
+                        directions, SampleReach(samples, lattice.Triangles(lattice.levels())));
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
@@ -274,12 +274,15 @@ class FitMeter {
         motion_(motion),
         lattice_(lattice),
         distance_(representable_distance),
-        stray_distance_(stray_distance) {}
+        stray_distance_(stray_distance),
+        triangles_(lattice.Triangles(lattice.levels())) {}
   DataFit Measure(const std::vector<RigidTransform>& transforms, const FrameProxy& frame) {
     PoseVertices(motion_, transforms, base_.positions, &posed_);
     ComputeVertexNormals(posed_, base_.triangles, &normals_);
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_, directions_);
+    reach_ = SampleReach(samples_, triangles_);
+    DataFit fit =
+        MeasureDataFit(samples_, frame.points, distance_, stray_distance_, directions_, reach_);
     if (frame.free_space && !samples_.empty()) {
       // Farther in front of what a camera saw than a displacement reaches, among the
       // samples some camera can judge (a one-view rig judges fewer than a ring).
@@ -314,7 +317,9 @@ class FitMeter {
   const MotionModel& motion_;
   const RegularSubdivision& lattice_;
   float distance_, stray_distance_;
+  std::vector<Triangle> triangles_;  ///< the lattice's finest triangles
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
+  std::vector<float> reach_;
 };
 
 /// Graph nodes that moved with the piece they were split from in every frame of the key

@@ -43,6 +43,12 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   EXPECT_NE(run.err.find("--tol-shrink must be in (0, 1)"), std::string::npos) << run.err;
   EXPECT_EQ(run.err.find("tolerance_shrink"), std::string::npos) << run.err;
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --base-voxel-scale 0 -q",
+                            dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--base-voxel-scale must be in [0.25, 8]"), std::string::npos)
+      << run.err;
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
                                 "' --codec mpeg2 -q",
                             dir);
   EXPECT_EQ(run.exit_code, 1);

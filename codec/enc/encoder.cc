@@ -49,6 +49,9 @@ Status CheckOptions(const EncoderOptions& o) {
   if (!(o.tuning.base_max_extension >= 0) || !std::isfinite(o.tuning.base_max_extension)) {
     return bad("tuning.base_max_extension must be finite and >= 0");
   }
+  if (!(o.tuning.base_voxel_scale >= 0.25 && o.tuning.base_voxel_scale <= 8)) {
+    return bad("tuning.base_voxel_scale must be in [0.25, 8]");
+  }
   if (o.tuning.base_fusion_points < 100) {
     return bad("tuning.base_fusion_points must be at least 100");
   }

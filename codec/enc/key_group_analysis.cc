@@ -98,6 +98,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   }
   SurfaceFusionOptions fusion_options;
   fusion_options.max_points = fusion_points;
+  fusion_options.voxel_scale = options.tuning.base_voxel_scale;
   fusion_options.max_extension_spacings = options.tuning.base_max_extension;
   fusion_options.view_cameras = ctx.view_cameras;
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));

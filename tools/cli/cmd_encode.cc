@@ -44,6 +44,7 @@ Status WithFlagNames(const Status& status) {
       {"gof_size", "--gof"},
       {"window", "--window"},
       {"base_fusion_points", "--base-fusion-points"},
+      {"base_voxel_scale", "--base-voxel-scale"},
       {"base_max_extension", "--base-extension"},
       {"key_group_threshold", "--key-group-threshold"},
       {"max_key_groups", "--max-key-groups"},
@@ -279,6 +280,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--base-fusion-points", o.tuning.base_fusion_points,
                   "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
                   "that explains under 75% of its frame is fused again from up to 150000)")
+      ->capture_default_str();
+  cmd->add_option("--base-voxel-scale", o.tuning.base_voxel_scale,
+                  "Voxel of a key frame's fusion, as a multiple of the size derived from the "
+                  "views (2: about twice as fast, a coarser and less accurate base)")
       ->capture_default_str();
   cmd->add_option("--base-extension", o.tuning.base_max_extension,
                   "Farthest a key frame's fused base reaches past the edge of the data, in the "

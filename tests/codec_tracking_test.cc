@@ -161,53 +161,65 @@ float SwingAngle(int frame) {
   return float(tenths) * 10 * kPi / 180;
 }
 
-// Disabled: the target, not met yet. Measured on this branch: 55 key groups of 1-5
-// frames. The base fused from a key frame leaves 4-8% of that frame's own points
-// unexplained and has surface 0.11-0.35 from the data (farthest_from_data), and at frame 1
-// the graph tracker's re-track of the segmentation's pieces leaves 66% of the points
-// unexplained. On the analytic base (the same tracker, 12 nodes of 48 vertices, all free)
-// the RMS distance to the data is 0.3% of the diagonal at frame 1, 1.7% at frame 2 and 5%
-// at 60 degrees with the default stiffness of 1; 0.1%, 0.2% and 1.7% with a stiffness of 0.1.
-TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
-  const int frame_count = 60;
-  std::vector<TriangleMesh> frames;
+/// Encodes one view per frame (a whole cylinder each) with a 600-vertex base, FFV1.
+StatusOr<EncodeSummary> EncodeOneViewFrames(const std::vector<TriangleMesh>& frames,
+                                            std::vector<std::uint8_t>* bytes) {
   std::vector<std::vector<TriangleMesh>> views;
-  for (int f = 0; f < frame_count; ++f) {
-    frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
-    views.push_back({frames.back()});
-  }
-  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
-  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  for (const TriangleMesh& frame : frames) views.push_back({frame});
+  MESHVID_ASSIGN_OR_RETURN(MemoryFrameSource source,
+                           MemoryFrameSource::Create(std::move(views)));
   EncoderOptions options;
   options.base_vertices = 600;
   options.codec = VideoCodec::kFfv1;
   options.gof_size = 4;
   // One view of 7,800 vertices: its proxy (5% by default) would be coarser than the base.
   options.tuning.proxy_fraction = 0.25;
-  std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeCapture(
-      *source,
-      [&](std::span<const std::uint8_t> b) {
-        bytes.insert(bytes.end(), b.begin(), b.end());
+  return EncodeCapture(
+      source,
+      [bytes](std::span<const std::uint8_t> b) {
+        bytes->insert(bytes->end(), b.begin(), b.end());
         return Status::Ok();
       },
       options);
+}
+
+/// RMS distance from the vertices of `bytes`' frame f at level 1 to frames[f], per frame.
+std::vector<double> RmsToFrames(const std::vector<std::uint8_t>& bytes,
+                                const std::vector<TriangleMesh>& frames) {
+  std::vector<double> rms;
+  auto decoder = MvidDecoder::OpenMemory(bytes);
+  EXPECT_TRUE(decoder.ok()) << decoder.status().ToString();
+  if (!decoder.ok()) return rms;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
+    auto data = SurfaceDistance::Build(frames[f]);
+    EXPECT_TRUE(mesh.ok() && data.ok());
+    if (!mesh.ok() || !data.ok()) return rms;
+    double sum = 0;
+    for (const Eigen::Vector3f& p : mesh->positions) sum += std::pow((*data)->Distance(p), 2);
+    rms.push_back(std::sqrt(sum / double(mesh->positions.size())));
+  }
+  return rms;
+}
+
+// Disabled: the target, not met yet. Measured (default settings): 60 key groups of
+// 1 frame; a key frame's base leaves 0.4% of its own points unexplained, the next frame 26%. On the analytic base (the same tracker, 12 nodes of 48 vertices, all free)
+// the RMS distance to the data is 0.3% of the diagonal at frame 1, 1.7% at frame 2 and 5%
+// at 60 degrees with the default stiffness of 1; 0.1%, 0.2% and 1.7% with a stiffness of 0.1.
+TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
+  const int frame_count = 60;
+  std::vector<TriangleMesh> frames;
+  for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
+  std::vector<std::uint8_t> bytes;
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   ASSERT_EQ(summary->key_groups.size(), 1u);
   EXPECT_EQ(summary->key_groups[0].frames, frame_count);
   // Every frame decodes within the segmentation's tolerance (0.5% of the diagonal) of the
   // data, RMS over the decoded vertices.
-  const float tolerance = float(summary->tolerance);
-  auto decoder = MvidDecoder::OpenMemory(bytes);
-  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
-  for (int f = 0; f < frame_count; ++f) {
-    auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
-    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
-    auto data = SurfaceDistance::Build(frames[f]);
-    ASSERT_TRUE(data.ok()) << data.status().ToString();
-    double sum = 0;
-    for (const Eigen::Vector3f& p : mesh->positions) sum += std::pow((*data)->Distance(p), 2);
-    EXPECT_LT(std::sqrt(sum / double(mesh->positions.size())), tolerance) << "frame " << f;
+  const std::vector<double> rms = RmsToFrames(bytes, frames);
+  for (std::size_t f = 0; f < rms.size(); ++f) {
+    EXPECT_LT(rms[f], summary->tolerance) << "frame " << f;
   }
 }
 
@@ -217,42 +229,19 @@ TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
 // patches and key groups, and every frame decodes near its data.
 TEST(KeyGroupFallback, AFoldedElbowThatDefeatsEverySegmentStillEncodesEveryFrame) {
   std::vector<TriangleMesh> frames;
-  std::vector<std::vector<TriangleMesh>> views;
   for (int f = 0; f < 4; ++f) {
     frames.push_back(BentCylinder(120, 64, -float(20 + 10 * f) * kPi / 180));
-    views.push_back({frames.back()});
   }
-  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
-  ASSERT_TRUE(source.ok()) << source.status().ToString();
-  EncoderOptions options;
-  options.base_vertices = 600;
-  options.codec = VideoCodec::kFfv1;
-  options.gof_size = 4;
-  options.tuning.proxy_fraction = 0.25;
   std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeCapture(
-      *source,
-      [&](std::span<const std::uint8_t> b) {
-        bytes.insert(bytes.end(), b.begin(), b.end());
-        return Status::Ok();
-      },
-      options);
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   EXPECT_TRUE(std::any_of(summary->key_groups.begin(), summary->key_groups.end(),
                           [](const KeyGroupSummary& k) { return k.registered_share == 0; }))
       << "no key group fell back: the scene no longer tests the fallback";
-  auto decoder = MvidDecoder::OpenMemory(bytes);
-  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
-  for (int f = 0; f < 4; ++f) {
-    auto mesh = (*decoder)->DecodeFrame(static_cast<std::uint32_t>(f), 1);
-    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
-    auto data = SurfaceDistance::Build(frames[f]);
-    ASSERT_TRUE(data.ok()) << data.status().ToString();
-    double sum = 0;
-    for (const Eigen::Vector3f& p : mesh->positions) sum += std::pow((*data)->Distance(p), 2);
-    const double rms = std::sqrt(sum / double(mesh->positions.size()));
-    RecordProperty("rms_frame_" + std::to_string(f), std::to_string(rms));
-    EXPECT_LT(rms, summary->tolerance) << "frame " << f;
+  const std::vector<double> rms = RmsToFrames(bytes, frames);  // 0.3-1.4 mm
+  ASSERT_EQ(rms.size(), frames.size());
+  for (std::size_t f = 0; f < rms.size(); ++f) {
+    EXPECT_LT(rms[f], summary->tolerance) << "frame " << f;
   }
 }
 
@@ -260,16 +249,9 @@ TEST(KeyGroupFallback, AFoldedElbowThatDefeatsEverySegmentStillEncodesEveryFrame
 // apart along the sliver, and the key frame's own base once seemed to leave half its data
 // unexplained, so every frame became a key frame.
 TEST(KeyGroupsOfACylinder, AStillCylinderStaysOneKeyGroup) {
-  std::vector<std::vector<TriangleMesh>> views(4, {BentCylinder(120, 64, 0)});
-  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
-  ASSERT_TRUE(source.ok()) << source.status().ToString();
-  EncoderOptions options;
-  options.base_vertices = 600;
-  options.codec = VideoCodec::kFfv1;
-  options.gof_size = 4;
-  options.tuning.proxy_fraction = 0.25;
-  StatusOr<EncodeSummary> summary = EncodeCapture(
-      *source, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
+  const std::vector<TriangleMesh> frames(4, BentCylinder(120, 64, 0));
+  std::vector<std::uint8_t> bytes;
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   ASSERT_EQ(summary->key_groups.size(), 1u);
   EXPECT_EQ(summary->key_groups[0].frames, 4);

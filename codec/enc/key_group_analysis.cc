@@ -281,9 +281,8 @@ class FitMeter {
     PoseVertices(motion_, transforms, base_.positions, &posed_);
     ComputeVertexNormals(posed_, base_.triangles, &normals_);
     EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    reach_ = SampleReach(samples_, triangles_);
-    DataFit fit =
-        MeasureDataFit(samples_, frame.points, distance_, stray_distance_, directions_, reach_);
+    DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_,
+                                 directions_, SampleReach(samples_, triangles_));
     if (frame.free_space && !samples_.empty()) {
       // Farther in front of what a camera saw than a displacement reaches, among the
       // samples some camera can judge (a one-view rig judges fewer than a ring).
@@ -320,7 +319,6 @@ class FitMeter {
   float distance_, stray_distance_;
   std::vector<Triangle> triangles_;  ///< the lattice's finest triangles
   std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
-  std::vector<float> reach_;
 };
 
 /// Graph nodes that moved with the piece they were split from in every frame of the key

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "codec/common/deformation_graph.h"
 #include "codec/common/subdivision.h"
 
 namespace meshvid::testing {
@@ -81,6 +82,17 @@ MotionModel TwoSegments(const TriangleMesh& base) {
   return model;
 }
 
+MotionModel DeformationNodes(const TriangleMesh& base, float spacing) {
+  MotionModel model;
+  const auto neighbours = VertexNeighbours(base);
+  model.node_vertices = SampleDeformationNodes(base, neighbours, spacing);
+  model.node_spacing = spacing;
+  model.segment_count = static_cast<std::uint32_t>(model.node_vertices.size());
+  auto blends = DeriveNodeBlends(base, neighbours, model.node_vertices, spacing);
+  if (blends.ok()) model.blends = std::move(*blends);
+  return model;
+}
+
 std::vector<RigidTransform> TransformsAt(int frame) {
   RigidTransform upper, lower;
   upper.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(0.05f * frame, Eigen::Vector3f::UnitY()));
@@ -107,7 +119,12 @@ Status WriteAnalyticFrames(MvidWriter& writer, int first_frame, int end) {
     std::vector<std::vector<RigidTransform>> transforms;
     std::vector<std::vector<float>> displacements;
     for (int f = first; f < std::min(end, first + gof_size); ++f) {
-      transforms.push_back(TransformsAt(f));
+      // Segment s moves as TransformsAt's segment s mod 2 (deformation nodes alternate).
+      const std::vector<RigidTransform> two = TransformsAt(f);
+      auto& frame = transforms.emplace_back();
+      for (std::uint32_t s = 0; s < writer.motion().segment_count; ++s) {
+        frame.push_back(two[s % 2]);
+      }
       auto& field = displacements.emplace_back();
       for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
     }

@@ -25,13 +25,17 @@ TriangleMesh LatLongSphere(int rings, int segments);
 /// Upper half (y > 0.2) in segment 0, lower half (y < -0.2) in segment 1, blended between.
 MotionModel TwoSegments(const TriangleMesh& base);
 
+/// Deformation nodes about `spacing` apart over `base` (MOTN version 3), with their blends.
+MotionModel DeformationNodes(const TriangleMesh& base, float spacing);
+
 /// Frame f: segment 0 turns 0.05 f rad about y, segment 1 moves 0.01 f along x.
 std::vector<RigidTransform> TransformsAt(int frame);
 
 /// The detail at a point of the unposed base, in [-0.02, 0.02], changing with time.
 float DetailAt(const Eigen::Vector3f& rest, int frame);
 
-/// Writes `frames` frames of this representation with `settings` to memory.
+/// Writes `frames` frames of this representation with `settings` to memory (segment s of
+/// `motion` moving as TransformsAt's segment s mod 2).
 StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,
                                                       const MotionModel& motion, int frames,
                                                       const MvidWriterSettings& settings,

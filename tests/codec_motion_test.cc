@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
+#include "codec/common/deformation_graph.h"
 #include "codec/common/motion.h"
 #include "codec/dec/motion_decoder.h"
 #include "codec/enc/motion_encoder.h"
@@ -102,6 +104,67 @@ TEST(MotionTest, SurfaceMaskRoundTripsAndMustMatchTheBase) {
   EXPECT_TRUE(plain_decoded->model.surface_triangles.empty());
   // A mask for another base mesh is corrupt input.
   EXPECT_EQ(DecodeMotionModel(*payload, 10, 12).status().code(), StatusCode::kCorrupt);
+}
+
+TEST(MotionTest, DeformationNodesRoundTripAndTheirBlendsAreDerivedFromTheBase) {
+  // A 9 x 9 grid of unit squares; nodes 3 apart along the edges.
+  TriangleMesh grid;
+  for (int y = 0; y < 9; ++y) {
+    for (int x = 0; x < 9; ++x) grid.positions.emplace_back(float(x), float(y), 0.0f);
+  }
+  for (std::uint32_t y = 0; y < 8; ++y) {
+    for (std::uint32_t x = 0; x < 8; ++x) {
+      const std::uint32_t a = y * 9 + x;
+      grid.triangles.push_back({a, a + 1, a + 10});
+      grid.triangles.push_back({a, a + 10, a + 9});
+    }
+  }
+  const auto neighbours = VertexNeighbours(grid);
+  MotionModel model;
+  model.node_spacing = 3;
+  model.node_vertices = SampleDeformationNodes(grid, neighbours, model.node_spacing);
+  model.segment_count = static_cast<std::uint32_t>(model.node_vertices.size());
+  ASSERT_TRUE(CompleteNodeBlends(grid, &model).ok());
+  model.surface_triangles.assign(grid.triangle_count(), 1);
+  model.surface_triangles[5] = 0;
+  auto payload = EncodeMotionModel(model, MotionQuantization{});
+  ASSERT_TRUE(payload.ok()) << payload.status().ToString();
+  EXPECT_EQ((*payload)[0], 3);  // motion_version 3: nodes, not blends
+  // A u32 per node, not 25 bytes per vertex.
+  EXPECT_LT(payload->size(), 30 + 4 * model.node_vertices.size() + 32);
+  auto decoded = DecodeMotionModel(*payload, grid.vertex_count(), grid.triangle_count());
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  EXPECT_EQ(decoded->model.node_vertices, model.node_vertices);
+  EXPECT_EQ(decoded->model.node_spacing, model.node_spacing);
+  EXPECT_EQ(decoded->model.surface_triangles, model.surface_triangles);
+  EXPECT_TRUE(decoded->model.blends.empty());
+  ASSERT_TRUE(CompleteNodeBlends(grid, &decoded->model).ok());
+  for (std::size_t v = 0; v < grid.vertex_count(); ++v) {
+    const VertexBlend& a = model.blends[v];
+    const VertexBlend& b = decoded->model.blends[v];
+    ASSERT_EQ(a.count, b.count) << "vertex " << v;
+    for (int k = 0; k < a.count; ++k) {
+      EXPECT_EQ(a.influences[k].segment, b.influences[k].segment);
+      EXPECT_EQ(a.influences[k].weight, b.influences[k].weight);
+    }
+  }
+  // A node vertex past the base, a spacing that is not finite, a vertex no node reaches.
+  MotionModel bad = model;
+  bad.node_vertices.back() = 81;
+  auto out_of_range = EncodeMotionModel(bad, MotionQuantization{});
+  ASSERT_TRUE(out_of_range.ok());
+  EXPECT_EQ(DecodeMotionModel(*out_of_range, 81, 128).status().code(), StatusCode::kCorrupt);
+  bad = model;
+  bad.node_spacing = std::numeric_limits<float>::quiet_NaN();
+  auto nan = EncodeMotionModel(bad, MotionQuantization{});
+  ASSERT_TRUE(nan.ok());
+  EXPECT_EQ(DecodeMotionModel(*nan, 81, 128).status().code(), StatusCode::kCorrupt);
+  bad = model;
+  bad.node_spacing = 0.5f;  // reaches 1.5: the grid's far corners have no node within it
+  EXPECT_EQ(CompleteNodeBlends(grid, &bad).code(), StatusCode::kCorrupt);
+  bad = model;
+  bad.node_vertices[1] = bad.node_vertices[0];
+  EXPECT_EQ(CompleteNodeBlends(grid, &bad).code(), StatusCode::kCorrupt);
 }
 
 TEST(MotionTest, TransformsRoundTripWithinTheStatedSteps) {

@@ -417,5 +417,38 @@ TEST(MvidGoldenTest, Version2FileWithKeyGroupsStillDecodes) {
   EXPECT_LE(MaxError(**decoder, 2, 12), kStep / 2 * 1.01f + 1e-6f);
 }
 
+// tests/golden/sphere.nodes.mvid: MOTN version 3 (spec/mvid-codec.md 2.3), a deformation
+// graph whose blends the decoder derives from the base mesh; written by this test when
+// MESHVID_WRITE_GOLDEN names a folder, decoded by it always.
+TEST(MvidGoldenTest, DeformationNodesFileDecodes) {
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 2;
+  settings.gof_size = 3;
+  settings.metadata_json = R"({"golden":"sphere deformation nodes"})";
+  const TriangleMesh base = testing::SphereMesh(2);
+  const MotionModel nodes = testing::DeformationNodes(base, 0.6f);
+  ASSERT_GT(nodes.segment_count, 8u);
+  MvidWriteStats stats;
+  auto bytes = testing::WriteAnalyticMvid(base, nodes, 6, settings, &stats);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  // A u32 per node instead of 25 bytes per vertex (258 vertices: 6,450 bytes raw).
+  EXPECT_LT(stats.motion_bytes, 40 + 4 * nodes.segment_count);
+  if (const char* out = std::getenv("MESHVID_WRITE_GOLDEN")) {
+    std::ofstream(std::string(out) + "/sphere.nodes.mvid", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  }
+  for (const bool golden : {false, true}) {
+    auto decoder = golden ? MvidDecoder::OpenFile(std::string(MESHVID_GOLDEN_DIR) +
+                                                  "/sphere.nodes.mvid")
+                          : MvidDecoder::OpenMemory(*bytes);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+    EXPECT_EQ((*decoder)->info().segments, nodes.segment_count);
+    ASSERT_TRUE((*decoder)->DecodeFrame(0, 0).ok());
+    EXPECT_EQ((*decoder)->motion().node_vertices.size(), nodes.segment_count);
+    EXPECT_LE(MaxError(**decoder, 2, 6), kStep / 2 * 1.01f + 1e-6f) << "golden " << golden;
+  }
+}
+
 }  // namespace
 }  // namespace meshvid

@@ -41,6 +41,9 @@ Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh);
 /// Appends `src` to `dst`, offsetting its indices. Normals are kept only if both have them.
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);
 
+/// The one-ring of each vertex of `mesh`, sorted, without duplicates.
+std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mesh);
+
 /// Area-weighted unit vertex normals (zero vector for an isolated vertex).
 std::vector<Eigen::Vector3f> ComputeVertexNormals(const TriangleMesh& mesh);
 /// The same for positions and triangles held apart (e.g. a posed copy of a mesh's vertices),

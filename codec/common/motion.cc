@@ -25,6 +25,11 @@ RigidTransform PredictConstantVelocity(const RigidTransform& before, const Rigid
 
 Status ValidateMotionModel(const MotionModel& model, std::size_t vertex_count) {
   if (model.segment_count == 0) return CorruptError("motion: no segments");
+  if (!model.node_vertices.empty() && model.node_vertices.size() != model.segment_count) {
+    return CorruptError("motion: " + std::to_string(model.node_vertices.size()) +
+                        " deformation nodes for " + std::to_string(model.segment_count) +
+                        " segments");
+  }
   if (model.blends.size() != vertex_count) {
     return CorruptError("motion: " + std::to_string(model.blends.size()) +
                         " vertex blends for " + std::to_string(vertex_count) +

@@ -58,6 +58,11 @@ struct MotionModel {
   /// Per base triangle: 1 if it is part of the captured surface, 0 if hidden (no view ever
   /// saw it: a decoder leaves out its triangles at every level). Empty: all are surface.
   std::vector<std::uint8_t> surface_triangles;
+  /// An embedded deformation graph (MOTN version 3): segment s is a node on base vertex
+  /// node_vertices[s], and the blends are derived from the nodes, `node_spacing` and the base
+  /// mesh (deformation_graph.h's DeriveNodeBlends) rather than stored. Empty: stored blends.
+  std::vector<std::uint32_t> node_vertices;
+  float node_spacing = 0;
 };
 
 /// Checks counts, segment indices, weights in [0, 1] summing to 1 (within 1e-3).

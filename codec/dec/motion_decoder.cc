@@ -11,9 +11,10 @@
 namespace meshvid {
 namespace {
 
-/// Versions this decoder reads: 1 (no surface mask), 2 (with one).
+/// Versions this decoder reads: 1 (no surface mask), 2 (with one), 3 (deformation nodes).
 constexpr std::uint8_t kMotionVersionMin = 1;
-constexpr std::uint8_t kMotionVersionMax = 2;
+constexpr std::uint8_t kMotionVersionMax = 3;
+constexpr std::uint8_t kMotionVersionNodes = 3;
 /// Bytes of one vertex blend in the raw MOTN body: count + 4 x (u32 segment, u16 weight).
 constexpr std::size_t kBlendBytes = 1 + kMaxInfluences * 6;
 /// Bytes of one transform in the raw transform body: 6 zig-zag u32.
@@ -48,7 +49,7 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
   MESHVID_ASSIGN_OR_RETURN(const std::uint8_t version, reader.ReadU8("motion_version"));
   if (version < kMotionVersionMin || version > kMotionVersionMax) {
     return UnsupportedError("motion (MOTN): version " + std::to_string(version) +
-                            " is not supported (this decoder reads versions 1 and 2)");
+                            " is not supported (this decoder reads versions 1 to 3)");
   }
   DecodedMotion result;
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t rotation_bits, reader.ReadU32("rotation_step"));
@@ -80,14 +81,32 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
                           " triangles");
     }
   }
+  const bool nodes = version == kMotionVersionNodes;
+  if (nodes) {
+    MESHVID_ASSIGN_OR_RETURN(const std::uint32_t spacing_bits, reader.ReadU32("node_spacing"));
+    result.model.node_spacing = std::bit_cast<float>(spacing_bits);
+    if (!(result.model.node_spacing > 0) || !std::isfinite(result.model.node_spacing)) {
+      return reader.Error("node_spacing must be positive and finite");
+    }
+  }
   const std::size_t mask_bytes = (std::size_t(mask_triangles) + 7) / 8;
+  // Version 3 stores a u32 per node (segment), the others a blend per vertex.
+  const std::size_t head_bytes =
+      nodes ? std::size_t(result.model.segment_count) * 4 : vertex_count * kBlendBytes;
   MESHVID_ASSIGN_OR_RETURN(
       const std::vector<std::uint8_t> body,
-      DecompressBlock(payload.subspan(reader.position()),
-                      vertex_count * kBlendBytes + mask_bytes, "motion (MOTN) blend weights"));
+      DecompressBlock(payload.subspan(reader.position()), head_bytes + mask_bytes,
+                      "motion (MOTN) blend weights"));
   ByteReader blends(body, "motion (MOTN) blend weights");
-  result.model.blends.resize(vertex_count);
-  for (std::size_t v = 0; v < vertex_count; ++v) {
+  if (nodes) result.model.node_vertices.resize(result.model.segment_count);
+  for (std::uint32_t& v : result.model.node_vertices) {
+    MESHVID_ASSIGN_OR_RETURN(v, blends.ReadU32("node vertex"));
+    if (v >= vertex_count) {
+      return blends.Error("node vertex " + std::to_string(v) + " is not a base vertex");
+    }
+  }
+  result.model.blends.resize(nodes ? 0 : vertex_count);
+  for (std::size_t v = 0; v < result.model.blends.size(); ++v) {
     VertexBlend& blend = result.model.blends[v];
     MESHVID_ASSIGN_OR_RETURN(blend.count, blends.ReadU8("influence count"));
     if (blend.count == 0 || blend.count > kMaxInfluences) {
@@ -107,9 +126,10 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
   }
   result.model.surface_triangles.resize(mask_triangles);
   for (std::size_t t = 0; t < mask_triangles; ++t) {
-    result.model.surface_triangles[t] = (body[vertex_count * kBlendBytes + t / 8] >> (t % 8)) & 1;
+    result.model.surface_triangles[t] = (body[head_bytes + t / 8] >> (t % 8)) & 1;
   }
-  MESHVID_RETURN_IF_ERROR(ValidateMotionModel(result.model, vertex_count));
+  // Version 3's blends need the base mesh (CompleteNodeBlends); the others are checked here.
+  if (!nodes) MESHVID_RETURN_IF_ERROR(ValidateMotionModel(result.model, vertex_count));
   return result;
 }
 

@@ -36,8 +36,10 @@ struct DecodedMotion {
   MotionQuantization quantization;
 };
 
-/// Decodes a MOTN payload (version 1 or 2) for a base mesh of `vertex_count` vertices and
-/// `triangle_count` triangles.
+/// Decodes a MOTN payload (version 1, 2 or 3) for a base mesh of `vertex_count` vertices and
+/// `triangle_count` triangles. A version 3 model holds nodes (MotionModel::node_vertices) and
+/// no blends yet: codec/common/deformation_graph.h's CompleteNodeBlends derives them from the
+/// base mesh.
 StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
                                           std::size_t vertex_count,
                                           std::size_t triangle_count = 0);

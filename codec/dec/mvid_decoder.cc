@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "codec/common/deformation_graph.h"
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/dec/gof_side_info.h"
 #include "codec/dec/motion_decoder.h"
@@ -253,6 +254,10 @@ Status MvidDecoder::LoadKeyGroup(std::size_t k) {
       bytes.motion, key_group->base.vertex_count(), key_group->base.triangle_count());
   if (!decoded.ok()) return decoded.status().WithContext(context + " MOTN");
   DecodedMotion& motion = *decoded;
+  if (!motion.model.node_vertices.empty()) {
+    const Status derived = CompleteNodeBlends(key_group->base, &motion.model);
+    if (!derived.ok()) return derived.WithContext(context + " MOTN");
+  }
   key_group->motion = std::move(motion.model);
   key_group->quantization = motion.quantization;
   MESHVID_ASSIGN_OR_RETURN(key_group->subdivision,

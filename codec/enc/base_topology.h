@@ -12,9 +12,6 @@
 
 namespace meshvid {
 
-/// The one-ring of each vertex of `mesh`, sorted, without duplicates.
-std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mesh);
-
 /// A base mesh with its one-rings and vertex normals, computed once. Holds a reference to the
 /// mesh, which must outlive it. Converts from a TriangleMesh where a stage is called alone.
 struct BaseTopology {

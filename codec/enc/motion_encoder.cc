@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "codec/common/compression.h"
@@ -17,6 +18,8 @@ namespace {
 // saying "no mask".
 constexpr std::uint8_t kMotionVersionWithoutMask = 1;
 constexpr std::uint8_t kMotionVersionWithMask = 2;
+/// motion_version 3: a deformation graph's nodes instead of blends, and the mask count.
+constexpr std::uint8_t kMotionVersionNodes = 3;
 
 std::uint32_t ZigZagDelta(std::int32_t from, std::int32_t to) {
   const auto delta = static_cast<std::int32_t>(static_cast<std::uint32_t>(to) -
@@ -61,14 +64,21 @@ StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(model, model.blends.size()));
   ByteWriter header;
   const bool masked = !model.surface_triangles.empty();
-  header.PutU8(masked ? kMotionVersionWithMask : kMotionVersionWithoutMask);
+  const bool nodes = !model.node_vertices.empty();
+  header.PutU8(nodes    ? kMotionVersionNodes
+               : masked ? kMotionVersionWithMask
+                        : kMotionVersionWithoutMask);
   header.PutU32(std::bit_cast<std::uint32_t>(quantization.rotation_step));
   header.PutU32(std::bit_cast<std::uint32_t>(quantization.translation_step));
   header.PutU32(model.segment_count);
   header.PutU32(static_cast<std::uint32_t>(model.blends.size()));
-  if (masked) header.PutU32(static_cast<std::uint32_t>(model.surface_triangles.size()));
+  if (masked || nodes) header.PutU32(static_cast<std::uint32_t>(model.surface_triangles.size()));
+  if (nodes) header.PutU32(std::bit_cast<std::uint32_t>(model.node_spacing));
   ByteWriter body;
-  for (const VertexBlend& blend : model.blends) {
+  // Version 3: the nodes' base vertices; a decoder derives the blends from them.
+  for (std::uint32_t v : model.node_vertices) body.PutU32(v);
+  for (const VertexBlend& blend : nodes ? std::span<const VertexBlend>()
+                                        : std::span<const VertexBlend>(model.blends)) {
     body.PutU8(blend.count);
     for (int i = 0; i < kMaxInfluences; ++i) {
       const bool used = i < blend.count;

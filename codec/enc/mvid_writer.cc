@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "codec/common/deformation_graph.h"
 #include "codec/dec/gof_side_info.h"
 #include "codec/enc/motion_encoder.h"
 #include "codec/enc/video_encoder.h"
@@ -63,6 +64,13 @@ Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& mo
     for (std::size_t t = 0; t < motion.surface_triangles.size(); ++t) {
       ordered.surface_triangles[base_coded.triangle_in_decoded[t]] = motion.surface_triangles[t];
     }
+    for (std::uint32_t& node : ordered.node_vertices) {
+      node = base_coded.vertex_in_decoded[node];
+    }
+  }
+  // A deformation graph's blends as a decoder derives them, from the decoded base.
+  if (!ordered.node_vertices.empty()) {
+    MESHVID_RETURN_IF_ERROR(CompleteNodeBlends(base_coded.decoded, &ordered));
   }
   MESHVID_ASSIGN_OR_RETURN(RegularSubdivision subdivision,
                            RegularSubdivision::Create(base_coded.decoded, settings_.levels));

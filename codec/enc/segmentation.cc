@@ -492,21 +492,6 @@ std::vector<std::uint32_t> GrowSegment(const SegmentContext& context,
 
 }  // namespace
 
-std::vector<std::vector<std::uint32_t>> VertexNeighbours(const TriangleMesh& mesh) {
-  std::vector<std::vector<std::uint32_t>> neighbours(mesh.vertex_count());
-  for (const Triangle& t : mesh.triangles) {
-    for (int c = 0; c < 3; ++c) {
-      neighbours[t[c]].push_back(t[(c + 1) % 3]);
-      neighbours[t[c]].push_back(t[(c + 2) % 3]);
-    }
-  }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
-  return neighbours;
-}
-
 StatusOr<Segmentation> SegmentPiecewiseRigid(const BaseTopology& topology,
                                              FrameTargets targets,
                                              const SegmentationOptions& options,

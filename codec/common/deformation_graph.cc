@@ -99,8 +99,8 @@ StatusOr<std::vector<VertexBlend>> DeriveNodeBlends(
   const std::size_t budget = kMaxReachesPerVertex * n;
   std::size_t reaches = 0;
   for (std::uint32_t node = 0; node < node_vertices.size(); ++node) {
-    SpreadAlongEdges(mesh, neighbours, node_vertices[node], kNodeReachSpacings * spacing,
-                     &distance, &touched, [&](std::uint32_t v, float d) {
+    SpreadAlongEdges(mesh, neighbours, node_vertices[node], kNodeReachSpacings * spacing, &distance,
+                     &touched, [&](std::uint32_t v, float d) {
                        if (reaches < budget) reached[v].push_back({d, node});
                        ++reaches;
                      });
@@ -135,8 +135,7 @@ StatusOr<std::vector<VertexBlend>> DeriveNodeBlends(
     VertexBlend& blend = blends[v];
     for (std::size_t k = 0; k < keep; ++k) {
       if (steps[k] <= 0) continue;
-      blend.influences[blend.count++] = {list[k].node,
-                                         float(steps[k]) / float(kNodeWeightSteps)};
+      blend.influences[blend.count++] = {list[k].node, float(steps[k]) / float(kNodeWeightSteps)};
     }
   }
   return blends;
@@ -147,9 +146,9 @@ Status CompleteNodeBlends(const TriangleMesh& mesh, MotionModel* model) {
     return CorruptError("deformation graph: " + std::to_string(model->node_vertices.size()) +
                         " nodes for " + std::to_string(model->segment_count) + " segments");
   }
-  MESHVID_ASSIGN_OR_RETURN(model->blends,
-                           DeriveNodeBlends(mesh, VertexNeighbours(mesh), model->node_vertices,
-                                            model->node_spacing));
+  MESHVID_ASSIGN_OR_RETURN(
+      model->blends,
+      DeriveNodeBlends(mesh, VertexNeighbours(mesh), model->node_vertices, model->node_spacing));
   return ValidateMotionModel(*model, mesh.vertex_count());
 }
 

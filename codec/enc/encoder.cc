@@ -26,6 +26,7 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
   l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
+  l.node_spacing = pick(o.tuning.node_spacing, 0.04);
   return l;
 }
 
@@ -41,8 +42,9 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.tuning.key_group_window < 2) {
     return bad("tuning.key_group_window must be at least 2 frames");
   }
-  if (!(o.key_group_threshold >= 0 && o.key_group_threshold <= 1)) {
-    return bad("key_group_threshold must be in [0, 1]");
+  if (!(o.key_group_threshold >= 0 && o.key_group_threshold <= 1) &&
+      o.key_group_threshold != -1) {
+    return bad("key_group_threshold must be in [0, 1] (or -1: automatic)");
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
@@ -90,6 +92,13 @@ Status CheckOptions(const EncoderOptions& o) {
   }
   if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
   if (!(o.tuning.node_rejoin_factor >= 0)) return bad("tuning.node_rejoin_factor must be >= 0");
+  if (!(o.tuning.node_spacing >= 0) || !(o.tuning.deform_rigidity > 0) ||
+      !(o.tuning.deform_point_weight >= 0)) {
+    return bad(
+        "tuning.node_spacing and tuning.deform_point_weight must be >= 0 and "
+        "tuning.deform_rigidity positive");
+  }
+  if (o.tuning.deform_iterations < 1) return bad("tuning.deform_iterations must be at least 1");
   if (o.tuning.reacquire_min_vertices < 3) {
     return bad("tuning.reacquire_min_vertices must be at least 3");
   }

@@ -120,6 +120,32 @@ struct EncoderTuning {
   /// Widest closest-point radius a lost piece is searched for within (0: 25%).
   double reacquire_max_distance = 0;
 
+  // --- non-rigid tracking (deformation_tracking.h; docs/encoder-method.md section 3.4)
+  /// Track a key group's base with an embedded deformation (nodes over the base surface,
+  /// every vertex blended over its nearest nodes, solved frame by frame to the data with
+  /// neighbouring nodes held together; the file stores the nodes, MOTN version 3) instead of
+  /// the multi-frame piecewise-rigid segmentation and its segment and graph trackers.
+  bool deformation_tracking = false;
+  /// Distance between the deformation's nodes along the base surface (0: 4% of the size,
+  /// about 220 nodes on samba's 2,500-vertex base). Measured on samba 6-ring (60 frames,
+  /// key_group_threshold 0.005): 2.6% made 20 key groups but 53/60 frames within 1.25x of the
+  /// baseline's accuracy, 4% 29 and 57/60, 5.2% 30 and 55/60.
+  double node_spacing = 0;
+  /// Weight of neighbouring nodes agreeing on each other's positions, against the data
+  /// (DeformationTrackingOptions::rigidity). Measured on samba 6-ring as above: 0.03 made 21
+  /// key groups and 49/60 frames within 1.25x, 0.1 29 and 57/60, 0.3 33 and 57/60; on a tube
+  /// bending 10 degrees a frame, 1 left 24% of the data beyond the tolerance at 60 degrees.
+  double deform_rigidity = 0.1;
+  /// Weight of the point-to-point distance beside the point-to-plane one.
+  double deform_point_weight = 0.1;
+  int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
+  /// Track each frame to its views fused into a closed surface (as a key frame's base is
+  /// fused) rather than to its views' proxy: where no view sees the subject, the surface is
+  /// pulled where per-frame fusion would close it. Measured (60 frames, HEVC q40, key-group
+  /// threshold 0.005), fused against proxy: samba 6-ring D1 56.38 against 56.21 dB (28 and
+  /// 29 key groups), arm-block 6-ring 52.61 against 52.51 dB (35 and 31).
+  bool deform_track_fused = true;
+
   // --- detail (docs/encoder-method.md section 4)
   /// Farthest hit along a sample normal, and the displacement range a key group must keep its
   /// frame's data within (0: 0.5% of the diagonal; 2% with max_key_groups 1, where one base
@@ -141,6 +167,15 @@ struct EncoderTuning {
   /// ends; past them its segments are tracked frame by frame while they explain the data.
   int key_group_window = 48;
 };
+
+/// The key-group threshold (EncoderOptions::key_group_threshold) of the piecewise-rigid
+/// segmentation: measured over 60 frames of samba on the 3-view arc (bench/RESULTS.md).
+inline constexpr double kSegmentationKeyGroupThreshold = 0.02;
+/// The key-group threshold of the embedded deformation, which follows the data more closely
+/// and so is held to it more strictly: at 0.02 samba 6-ring (60 frames) made 11 key groups but
+/// 34/60 frames within 1.25x of the baseline's accuracy; at 0.01, 19 and 44/60; at 0.005, 29
+/// and 58/60.
+inline constexpr double kDeformationKeyGroupThreshold = 0.005;
 
 /// Every setting of the encoder: the few a user chooses, and the internals in `tuning`.
 struct EncoderOptions {
@@ -166,8 +201,10 @@ struct EncoderOptions {
   // --- key groups (a fresh base where tracking no longer explains the data)
   /// A new key group starts at a frame whose captured points farther from the tracked base
   /// than the displacement range (tuning.detail_max_distance) exceed the key frame's share by more
-  /// than this (0..1). Smaller: more key groups, closer to per-frame fusion.
-  double key_group_threshold = 0.02;
+  /// than this (0..1). Smaller: more key groups, closer to per-frame fusion. -1: automatic,
+  /// kDeformationKeyGroupThreshold with tuning.deformation_tracking, else
+  /// kSegmentationKeyGroupThreshold (each measured with its tracker).
+  double key_group_threshold = -1;
   /// Most key groups (0: no limit). 1 keeps one base and one connectivity for the whole
   /// capture, as the paper does (for editing).
   int max_key_groups = 0;

@@ -16,6 +16,7 @@
 #include "codec/common/subdivision.h"
 #include "codec/enc/data_fit.h"
 #include "codec/enc/decimation.h"
+#include "codec/enc/deformation_tracking.h"
 #include "codec/enc/motion_blend.h"
 #include "codec/enc/patch_tracking.h"
 #include "codec/enc/surface_fusion.h"
@@ -53,6 +54,7 @@ StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double f
     if (free_space->view_count() > 0) result.free_space = std::move(free_space);
   }
   MESHVID_ASSIGN_OR_RETURN(result.target, ShootingTarget::Create(proxy));
+  result.normals = ComputeVertexNormals(proxy);
   result.points = std::move(proxy.positions);
   return result;
 }
@@ -65,6 +67,13 @@ float DiagonalOf(const std::vector<TriangleMesh>& views) {
 
 namespace {
 
+/// The key-group threshold in force (EncoderOptions::key_group_threshold; -1: by tracker).
+double KeyGroupThreshold(const EncoderOptions& options) {
+  if (options.key_group_threshold >= 0) return options.key_group_threshold;
+  return options.tuning.deformation_tracking ? kDeformationKeyGroupThreshold
+                                             : kSegmentationKeyGroupThreshold;
+}
+
 /// The fit of a frame's points to its unposed base (sampled on lattice level <= 2).
 StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                             const std::vector<Eigen::Vector3f>& points, float distance) {
@@ -75,6 +84,17 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                        &samples, &directions);
   return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity(),
                         directions, SampleReach(samples, lattice.Triangles(lattice.levels())));
+}
+
+/// A frame's views fused into one closed surface (at most `fusion_points` of their points).
+StatusOr<TriangleMesh> FuseFrame(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
+                                 std::size_t fusion_points) {
+  SurfaceFusionOptions fusion_options;
+  fusion_options.max_points = fusion_points;
+  fusion_options.voxel_scale = ctx.options.tuning.base_voxel_scale;
+  fusion_options.max_extension_spacings = ctx.options.tuning.base_max_extension;
+  fusion_options.view_cameras = ctx.view_cameras;
+  return FuseRangeMeshes(views, fusion_options, ctx.progress);
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
@@ -96,12 +116,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
     }
     return base;
   }
-  SurfaceFusionOptions fusion_options;
-  fusion_options.max_points = fusion_points;
-  fusion_options.voxel_scale = options.tuning.base_voxel_scale;
-  fusion_options.max_extension_spacings = options.tuning.base_max_extension;
-  fusion_options.view_cameras = ctx.view_cameras;
-  MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseRangeMeshes(views, fusion_options, ctx.progress));
+  MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseFrame(ctx, views, fusion_points));
   DecimationOptions decimation;
   decimation.target_vertices = options.base_vertices;
   decimation.max_error = ctx.lengths.base_max_error;
@@ -234,26 +249,29 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
   return result;
 }
 
-/// The base triangles some view saw (two corners or more) in some analysed frame; sets the
-/// summary's share and, with hide_unseen, the motion's surface mask.
-void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
-                 const std::vector<const ShootingTarget*>& targets,
-                 const std::vector<std::vector<RigidTransform>>& tracks, MotionModel* motion,
-                 KeyGroupSummary* summary) {
-  std::vector<char> observed(base.vertex_count(), 0);
+/// Marks the base vertices some view sees in one frame (`target`) when posed by `track`:
+/// a shot along the posed normal hits within the displacement range.
+void ObserveVertices(const EncodeContext& ctx, const TriangleMesh& base,
+                     const MotionModel& motion, const ShootingTarget& target,
+                     std::span<const RigidTransform> track, std::vector<char>* observed) {
   std::vector<Eigen::Vector3f> posed, normals;
   ShotLimits limits = ctx.seg.shot;
   limits.max_distance = ctx.lengths.detail_max_distance;
-  for (std::size_t k = 0; k < targets.size(); ++k) {
-    if (targets[k] == nullptr) continue;
-    PoseVertices(*motion, tracks[k], base.positions, &posed);
-    ComputeVertexNormals(posed, base.triangles, &normals);
-    tbb::parallel_for(std::size_t(0), posed.size(), [&](std::size_t v) {
-      if (!observed[v] && !std::isnan(targets[k]->Shoot(posed[v], normals[v], limits))) {
-        observed[v] = 1;
-      }
-    });
-  }
+  PoseVertices(motion, track, base.positions, &posed);
+  ComputeVertexNormals(posed, base.triangles, &normals);
+  observed->resize(base.vertex_count(), 0);
+  tbb::parallel_for(std::size_t(0), posed.size(), [&](std::size_t v) {
+    if (!(*observed)[v] && !std::isnan(target.Shoot(posed[v], normals[v], limits))) {
+      (*observed)[v] = 1;
+    }
+  });
+}
+
+/// The base triangles some view saw (two corners or more, `observed`); sets the summary's
+/// share and, with hide_unseen, the motion's surface mask.
+void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
+                 const std::vector<char>& observed, MotionModel* motion,
+                 KeyGroupSummary* summary) {
   motion->surface_triangles.resize(base.triangle_count());
   std::size_t surface = 0;
   for (std::size_t i = 0; i < base.triangle_count(); ++i) {
@@ -456,8 +474,96 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
                                             /*soft_from=*/segmented.soft_from);
   std::vector<std::vector<RigidTransform>> analysed_tracks;
   for (int t : analysed) analysed_tracks.push_back(tracks[t - start]);
-  MarkSurface(ctx, base, targets, analysed_tracks, &analysis->motion, &analysis->summary);
+  std::vector<char> observed(base.vertex_count(), 0);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    if (targets[k] != nullptr) {
+      ObserveVertices(ctx, base, analysis->motion, *targets[k], analysed_tracks[k], &observed);
+    }
+  }
+  MarkSurface(ctx, base, observed, &analysis->motion, &analysis->summary);
   return segmented;
+}
+
+/// The motion of a key group as an embedded deformation of its base (tuning.
+/// deformation_tracking): its nodes tracked frame by frame from the key frame at `start` while
+/// the posed base explains each frame's data (to the end of the capture unless `may_cut`).
+/// Fills the analysis' motion, tracks, frame count and node figures.
+Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int start,
+                             bool may_cut, ProxyCache* proxies, KeyGroupAnalysis* analysis) {
+  const EncoderOptions& options = ctx.options;
+  const TriangleMesh& base = analysis->base;
+  KeyGroupSummary& summary = analysis->summary;
+  MESHVID_ASSIGN_OR_RETURN(const DeformationGraph graph,
+                           BuildDeformationGraph(topology, ctx.lengths.node_spacing));
+  analysis->motion = graph.motion;
+  const int nodes = static_cast<int>(graph.node_vertices.size());
+  summary.segments = nodes;
+  summary.patches = 0;
+  summary.registered_share = 1;
+  DeformationTrackingOptions tracking;
+  tracking.max_distance = ctx.lengths.max_distance;
+  tracking.tolerance = ctx.seg.tolerance;
+  tracking.min_normal_cos = ctx.seg.shot.min_abs_cos;
+  tracking.rigidity = options.tuning.deform_rigidity;
+  tracking.point_weight = options.tuning.deform_point_weight;
+  tracking.iterations = options.tuning.deform_iterations;
+  const DeformationTracker tracker(topology, graph, tracking);
+
+  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
+                           RegularSubdivision::Create(base, std::min(options.levels, 2)));
+  FitMeter meter(base, analysis->motion, lattice, ctx.lengths.detail_max_distance,
+                 ctx.lengths.max_distance);
+  auto& tracks = analysis->tracks;
+  tracks.assign(1, std::vector<RigidTransform>(nodes));
+  const FrameProxy& key_frame = (*proxies)[start];
+  const DataFit key_fit = meter.Measure(tracks[0], key_frame);
+  summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
+  summary.cut_unexplained = summary.cut_seen_through = -1;
+  std::vector<char> observed(base.vertex_count(), 0);
+  if (key_frame.target) {
+    ObserveVertices(ctx, base, analysis->motion, *key_frame.target, tracks[0], &observed);
+  }
+  for (int t = start + 1; t < ctx.end; ++t) {
+    if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
+    proxies->erase(proxies->begin(), proxies->lower_bound(t));
+    if (!proxies->count(t)) {
+      MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
+      MESHVID_ASSIGN_OR_RETURN(
+          (*proxies)[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+    }
+    const FrameProxy& proxy = (*proxies)[t];
+    const std::span<const RigidTransform> before =
+        tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
+                           : std::span<const RigidTransform>();
+    std::vector<RigidTransform> next;
+    if (options.tuning.deform_track_fused) {
+      // The frame fused (closed where no view saw it, as a key frame's base would be).
+      MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
+      MESHVID_ASSIGN_OR_RETURN(const TriangleMesh fused,
+                               FuseFrame(ctx, views, options.tuning.base_fusion_points));
+      const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(fused);
+      next = tracker.Track({fused.positions, normals}, tracks.back(), before);
+    } else {
+      next = tracker.Track({proxy.points, proxy.normals}, tracks.back(), before);
+    }
+    if (may_cut) {
+      const DataFit fit = meter.Measure(next, proxy);
+      if (!StillExplains(key_fit, fit, KeyGroupThreshold(options))) {
+        summary.cut_unexplained = fit.unexplained_share;
+        summary.cut_seen_through = fit.seen_through_share;
+        break;
+      }
+      summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
+    }
+    if (proxy.target) {
+      ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);
+    }
+    tracks.push_back(std::move(next));
+  }
+  summary.frames = static_cast<int>(tracks.size());
+  proxies->erase(proxies->begin(), proxies->lower_bound(start + summary.frames));
+  MarkSurface(ctx, base, observed, &analysis->motion, &summary);
+  return Status::Ok();
 }
 
 /// Frames a key group that may be cut is first analysed over: where tracking fails fast,
@@ -520,6 +626,11 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start);
 
+  if (options.tuning.deformation_tracking) {
+    MESHVID_RETURN_IF_ERROR(
+        TrackDeformedKeyGroup(ctx, topology, start, may_cut, &proxies, &analysis));
+    return analysis;
+  }
   if (!may_cut) {
     // Every remaining frame, or `window` of them spread evenly, segmented jointly.
     const int stride = (ctx.end - start + options.tuning.window - 1) / options.tuning.window;
@@ -539,7 +650,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   std::optional<FitMeter> meter;
   auto explained = [&](int t, const FrameProxy& frame) {
     const DataFit fit = meter->Measure(tracks[t - start], frame);
-    if (!StillExplains(key_fit, fit, options.key_group_threshold)) {
+    if (!StillExplains(key_fit, fit, KeyGroupThreshold(options))) {
       summary.cut_unexplained = fit.unexplained_share;
       summary.cut_seen_through = fit.seen_through_share;
       return false;

@@ -34,7 +34,7 @@ double SecondsSince(Clock::time_point start);
 struct Lengths {
   float scale = 1;
   float max_distance = 0, tolerance = 0, detail_max_distance = 0, outlier_distance = 0,
-        base_max_error = 0, reacquire_max_distance = 0;
+        base_max_error = 0, reacquire_max_distance = 0, node_spacing = 0;
 };
 
 /// A frame's views decimated into one correspondence target, and the target's vertices (the
@@ -42,6 +42,7 @@ struct Lengths {
 struct FrameProxy {
   std::unique_ptr<ShootingTarget> target;  ///< null when the frame has no data
   std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;  ///< per point, the unit normal of its views' surface
   /// Where the frame's calibrated cameras saw through (null without cameras).
   std::shared_ptr<const SeenFreeSpace> free_space;
 };

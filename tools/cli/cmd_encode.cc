@@ -298,7 +298,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Start a new key group (a fresh base fused from that frame) where the share "
                   "of captured points the tracked base cannot reach (farther than the "
                   "displacement range), or of its surface lying where a camera saw through "
-                  "(--free-space), grows by more than this over its key frame's, 0..1")
+                  "(--free-space), grows by more than this over its key frame's, 0..1 (-1: "
+                  "0.005 with --deform, 0.02 without)")
       ->capture_default_str();
   cmd->add_option("--max-key-groups", o.max_key_groups,
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
@@ -407,6 +408,34 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Widest closest-point radius a lost piece is searched within (0: 25% of the "
                   "size)")
       ->capture_default_str();
+  cmd->add_option("--deform", o.tuning.deformation_tracking,
+                  "Track each key group's base as an embedded deformation (nodes over its "
+                  "surface, each vertex blended over its nearest nodes, neighbours held "
+                  "together) instead of the piecewise-rigid segmentation")
+      ->capture_default_str();
+  cmd->add_option("--node-spacing", o.tuning.node_spacing,
+                  "With --deform, distance between the deformation's nodes along the surface "
+                  "(0: 4% of the size)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rigidity", o.tuning.deform_rigidity,
+                  "With --deform, weight of neighbouring nodes agreeing on each other's "
+                  "positions, per vertex a node carries")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--point-weight", o.tuning.deform_point_weight,
+                  "With --deform, weight of the point-to-point distance beside the "
+                  "point-to-plane one")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--deform-fused", o.tuning.deform_track_fused,
+                  "With --deform, track each frame to its views fused into a closed surface "
+                  "instead of to the views themselves")
+      ->capture_default_str();
+  cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
+                  "With --deform, Gauss-Newton steps per correspondence radius")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,
                   "Share of each view's vertices kept in its correspondence proxy")
       ->capture_default_str();

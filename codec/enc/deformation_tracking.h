@@ -1,0 +1,83 @@
+// Frame-to-frame non-rigid tracking of a key group's base as an embedded deformation (Sumner
+// et al. 2007; docs/encoder-method.md section 3.4): graph nodes sampled over the base surface,
+// every vertex blended over its nearest nodes along the surface, every node a rigid transform
+// per frame. That is the format's motion model as it stands (a node is a piece, the blend its
+// weights), so a decoder poses the result as any other track.
+//
+// A frame is solved by Gauss-Newton from a constant-velocity prediction of every node: the
+// posed base is pulled to the closest of the frame's data points with a compatible normal
+// (point-to-plane, and a little point-to-point so that it does not slide along flat data),
+// and neighbouring nodes are held to agree on where they put each other as they did in the
+// previous frame (as rigid as possible from frame to frame). Coarse to fine: the
+// correspondence radius halves from the search distance to two tolerances.
+#ifndef MESHVID_CODEC_ENC_DEFORMATION_TRACKING_H_
+#define MESHVID_CODEC_ENC_DEFORMATION_TRACKING_H_
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "codec/common/motion.h"
+#include "codec/enc/base_topology.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// The nodes of a base: what does not change between frames.
+struct DeformationGraph {
+  std::vector<std::uint32_t> node_vertices;         ///< the base vertex each node sits on
+  std::vector<std::vector<std::int32_t>> adjacent;  ///< per node, the nodes it is held to
+  /// The blend of every base vertex over at most kMaxInfluences nodes (segment = node), with
+  /// the nodes and their spacing.
+  MotionModel motion;
+};
+
+/// Samples nodes over `base` about `node_spacing` apart along its edges and blends every
+/// vertex over its nearest nodes (codec/common/deformation_graph.h: the motion model a file
+/// stores as nodes), and joins nodes that blend a vertex together or are nearest to the two
+/// ends of an edge.
+StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing);
+
+/// A frame's data points as the tracker searches them.
+struct TrackingData {
+  std::span<const Eigen::Vector3f> points;
+  std::span<const Eigen::Vector3f> normals;  ///< unit, one per point (zero: no normal)
+};
+
+/// The tracker's constants (EncoderTuning holds each as an option).
+struct DeformationTrackingOptions {
+  float max_distance = 0;       ///< first correspondence radius (scene units)
+  float tolerance = 0;          ///< the last radius is 2x this
+  float min_normal_cos = 0.5f;  ///< smallest cosine between base and data normals
+  /// Weight of neighbouring nodes agreeing on each other's positions, against the data (1: a
+  /// node's edges weigh as much as the vertices it carries).
+  double rigidity = 0.1;
+  /// Weight of the point-to-point distance beside the point-to-plane one.
+  double point_weight = 0.1;
+  int iterations = 3;  ///< Gauss-Newton steps per radius
+};
+
+/// Tracks the nodes of one key group frame by frame.
+class DeformationTracker {
+ public:
+  /// `base` and `graph` must outlive the tracker.
+  DeformationTracker(const BaseTopology& base, const DeformationGraph& graph,
+                     const DeformationTrackingOptions& options);
+
+  /// The nodes' transforms in a frame, from the last frame's `previous` and the one before,
+  /// `before` (empty: none, the prediction is `previous`).
+  std::vector<RigidTransform> Track(const TrackingData& frame,
+                                    std::span<const RigidTransform> previous,
+                                    std::span<const RigidTransform> before) const;
+
+ private:
+  const BaseTopology& base_;
+  const DeformationGraph& graph_;
+  DeformationTrackingOptions options_;
+  double edge_weight_ = 1;  ///< rigidity weight of one edge per unit of options_.rigidity
+};
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_DEFORMATION_TRACKING_H_

@@ -1,16 +1,13 @@
 #include "codec/enc/deformation_tracking.h"
 
-#include <tbb/parallel_for.h>
-
-#include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
-#include <limits>
-#include <queue>
 #include <utility>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <tbb/parallel_for.h>
 
 #include "codec/common/deformation_graph.h"
 #include "codec/common/point_tree.h"
@@ -23,6 +20,214 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& a) {
   m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
   return m;
 }
+
+/// The Gauss-Newton solve of one frame's node transforms (DeformationTracker::Track).
+class FrameSolver {
+ public:
+  FrameSolver(const BaseTopology& base, const DeformationGraph& graph,
+              const DeformationTrackingOptions& options, const TrackingData& frame,
+              std::span<const RigidTransform> previous, double rigidity)
+      : base_(base),
+        graph_(graph),
+        options_(options),
+        frame_(frame),
+        cloud_{frame.points},
+        tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize)),
+        rigidity_(rigidity),
+        match_(base.mesh.vertex_count()) {
+    const auto& rest = base.mesh.positions;
+    // Where node j put node k in the previous frame, in node j's rest coordinates: the rigidity
+    // holds the shape the last frame had, not the key frame's (a limb bent away from its rest
+    // pose is not pulled back straight).
+    anchors_.resize(graph.node_vertices.size());
+    for (std::size_t j = 0; j < anchors_.size(); ++j) {
+      const RigidTransform inverse = Inverse(previous[j]);
+      for (std::int32_t k : graph.adjacent[j]) {
+        anchors_[j].push_back(
+            inverse.Apply(previous[k].Apply(rest[graph.node_vertices[k]])).cast<double>());
+      }
+    }
+    // Correspondence radii halving from the search distance to 2 tolerances.
+    for (float r = options.max_distance; r > 2.5f * options.tolerance; r *= 0.5f) {
+      radii_.push_back(r);
+    }
+    radii_.push_back(2 * options.tolerance);
+  }
+
+  /// Gauss-Newton from `transforms`, coarse to fine (the first call also decides which way
+  /// the data's normals face, from its start).
+  std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms) {
+    if (!facing_known_) {
+      facing_ = DataFacing(transforms);
+      facing_known_ = true;
+    }
+    for (const float radius : radii_) {
+      for (int iteration = 0; iteration < options_.iterations; ++iteration) {
+        if (Correspond(transforms, radius) == 0 || !Step(&transforms)) break;
+      }
+    }
+    return transforms;
+  }
+
+  /// How many vertices posed by `transforms` have data within the last radius.
+  std::size_t Matched(const std::vector<RigidTransform>& transforms) {
+    return Correspond(transforms, radii_.back());
+  }
+
+ private:
+  /// +1 when the data's normals face the way the base's do, -1 when most nearest points within
+  /// the search distance disagree (a capture may wind its views the other way round).
+  float DataFacing(std::span<const RigidTransform> transforms) {
+    PoseVertices(graph_.motion, transforms, base_.mesh.positions, &posed_);
+    ComputeVertexNormals(posed_, base_.mesh.triangles, &normals_);
+    long vote = 0;
+    for (std::size_t v = 0; v < posed_.size(); ++v) {
+      std::uint32_t index = 0;
+      float squared = 0;
+      if (tree_.knnSearch(posed_[v].data(), 1, &index, &squared) == 1 &&
+          squared <= options_.max_distance * options_.max_distance) {
+        const float cosine = frame_.normals[index].dot(normals_[v]);
+        vote += cosine >= options_.min_normal_cos ? 1 : cosine <= -options_.min_normal_cos ? -1 : 0;
+      }
+    }
+    return vote < 0 ? -1.0f : 1.0f;
+  }
+
+  /// Poses the base and finds every vertex's correspondence (match_, -1: none): the nearest
+  /// data point within `radius` whose normal agrees. Returns how many vertices have one.
+  std::size_t Correspond(const std::vector<RigidTransform>& transforms, float radius) {
+    PoseVertices(graph_.motion, transforms, base_.mesh.positions, &posed_);
+    ComputeVertexNormals(posed_, base_.mesh.triangles, &normals_);
+    constexpr int kCandidates = 8;
+    tbb::parallel_for(std::size_t(0), posed_.size(), [&](std::size_t v) {
+      match_[v] = -1;
+      std::uint32_t index[kCandidates];
+      float squared[kCandidates];
+      const std::size_t found = tree_.knnSearch(posed_[v].data(), kCandidates, index, squared);
+      for (std::size_t k = 0; k < found; ++k) {
+        if (squared[k] > radius * radius) break;
+        if (facing_ * frame_.normals[index[k]].dot(normals_[v]) >= options_.min_normal_cos) {
+          match_[v] = static_cast<std::int32_t>(index[k]);
+          break;
+        }
+      }
+    });
+    return static_cast<std::size_t>(
+        std::count_if(match_.begin(), match_.end(), [](std::int32_t m) { return m >= 0; }));
+  }
+
+  /// Adds J^T M J and -J^T M r for a residual r with metric M and blocks of J per node.
+  void Add(std::span<const std::int32_t> which, std::span<const Eigen::Matrix<double, 3, 6>> blocks,
+           const Eigen::Matrix3d& metric, const Eigen::Vector3d& residual) {
+    for (std::size_t a = 0; a < which.size(); ++a) {
+      const Eigen::Matrix<double, 6, 3> jt_m = blocks[a].transpose() * metric;
+      rhs_.segment<6>(6 * which[a]) -= jt_m * residual;
+      for (std::size_t b = 0; b < which.size(); ++b) {
+        const Eigen::Matrix<double, 6, 6> h = jt_m * blocks[b];
+        for (int r = 0; r < 6; ++r) {
+          for (int c = 0; c < 6; ++c) {
+            triplets_.emplace_back(6 * which[a] + r, 6 * which[b] + c, h(r, c));
+          }
+        }
+      }
+    }
+  }
+
+  /// One Gauss-Newton step over the correspondences of the last Correspond(); false when the
+  /// system cannot be solved (the transforms are then left as they were).
+  bool Step(std::vector<RigidTransform>* transforms) {
+    const auto& rest = base_.mesh.positions;
+    const std::size_t nodes = graph_.node_vertices.size();
+    const int unknowns = static_cast<int>(6 * nodes);
+    // Each node's posed centre c: a step turns its points y about it,
+    // y' = y + w x (y - c) + t (linearised in the node's turn w and shift t).
+    std::vector<Eigen::Vector3d> centres(nodes);
+    std::vector<Eigen::Matrix3d> rotations(nodes);
+    for (std::size_t j = 0; j < nodes; ++j) {
+      rotations[j] = (*transforms)[j].rotation.toRotationMatrix().cast<double>();
+      centres[j] = rotations[j] * rest[graph_.node_vertices[j]].cast<double>() +
+                   (*transforms)[j].translation.cast<double>();
+    }
+    triplets_.clear();
+    rhs_ = Eigen::VectorXd::Zero(unknowns);
+    std::array<std::int32_t, kMaxInfluences> which{};
+    std::array<Eigen::Matrix<double, 3, 6>, kMaxInfluences> blocks;
+    // Data: point-to-plane and a little point-to-point to each vertex's correspondence.
+    for (std::size_t v = 0; v < rest.size(); ++v) {
+      if (match_[v] < 0) continue;
+      const Eigen::Vector3d p = rest[v].cast<double>();
+      const Eigen::Vector3d target = frame_.points[match_[v]].cast<double>();
+      const Eigen::Vector3d nd = frame_.normals[match_[v]].cast<double>();
+      const VertexBlend& blend = graph_.motion.blends[v];
+      for (int k = 0; k < blend.count; ++k) {
+        const std::uint32_t j = blend.influences[k].segment;
+        const double w = blend.influences[k].weight;
+        const Eigen::Vector3d y = rotations[j] * p + (*transforms)[j].translation.cast<double>();
+        which[k] = static_cast<std::int32_t>(j);
+        blocks[k].leftCols<3>() = -w * Skew(y - centres[j]);
+        blocks[k].rightCols<3>() = w * Eigen::Matrix3d::Identity();
+      }
+      const Eigen::Matrix3d metric =
+          nd * nd.transpose() + options_.point_weight * Eigen::Matrix3d::Identity();
+      Add(std::span(which).first(blend.count), std::span(blocks).first(blend.count), metric,
+          posed_[v].cast<double>() - target);
+    }
+    // Rigidity: node j puts node k where it did in the previous frame, relative to itself.
+    for (std::size_t j = 0; j < nodes; ++j) {
+      for (std::size_t e = 0; e < graph_.adjacent[j].size(); ++e) {
+        const std::int32_t k = graph_.adjacent[j][e];
+        const Eigen::Vector3d y =
+            rotations[j] * anchors_[j][e] + (*transforms)[j].translation.cast<double>();
+        which[0] = static_cast<std::int32_t>(j);
+        which[1] = k;
+        blocks[0].leftCols<3>() = -Skew(y - centres[j]);
+        blocks[0].rightCols<3>() = Eigen::Matrix3d::Identity();
+        blocks[1].leftCols<3>().setZero();
+        blocks[1].rightCols<3>() = -Eigen::Matrix3d::Identity();
+        Add(std::span(which).first(2), std::span(blocks).first(2),
+            rigidity_ * Eigen::Matrix3d::Identity(), y - centres[k]);
+      }
+    }
+    // Damping: a node neither data nor neighbours decide stays where it is.
+    const double damping = 1e-6 * rigidity_;
+    for (int i = 0; i < unknowns; ++i) triplets_.emplace_back(i, i, damping);
+    Eigen::SparseMatrix<double> system(unknowns, unknowns);
+    system.setFromTriplets(triplets_.begin(), triplets_.end());
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
+    if (solver.info() != Eigen::Success) return false;
+    const Eigen::VectorXd step = solver.solve(rhs_);
+    if (solver.info() != Eigen::Success || !step.allFinite()) return false;
+    for (std::size_t j = 0; j < nodes; ++j) {
+      const Eigen::Vector3d omega = step.segment<3>(6 * j);
+      const Eigen::Vector3d tau = step.segment<3>(6 * j + 3);
+      const double angle = omega.norm();
+      const Eigen::Quaterniond turn =
+          angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle))
+                    : Eigen::Quaterniond::Identity();
+      RigidTransform& t = (*transforms)[j];
+      const Eigen::Vector3d translation = t.translation.cast<double>();
+      t.rotation = (turn.cast<float>() * t.rotation).normalized();
+      t.translation = (turn * (translation - centres[j]) + centres[j] + tau).cast<float>();
+    }
+    return true;
+  }
+
+  const BaseTopology& base_;
+  const DeformationGraph& graph_;
+  const DeformationTrackingOptions& options_;
+  const TrackingData& frame_;
+  const PointCloud cloud_;
+  const PointTree tree_;
+  const double rigidity_;
+  std::vector<std::vector<Eigen::Vector3d>> anchors_;  ///< per node, per edge
+  std::vector<float> radii_;
+  float facing_ = 1;
+  bool facing_known_ = false;
+  std::vector<Eigen::Vector3f> posed_, normals_;
+  std::vector<std::int32_t> match_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::VectorXd rhs_;
+};
 
 }  // namespace
 
@@ -81,178 +286,15 @@ std::vector<RigidTransform> DeformationTracker::Track(
     predicted[j] = PredictConstantVelocity(before[j], previous[j]);
   }
   if (frame.points.empty() || nodes == 0) return predicted;
-  const PointCloud cloud{frame.points};
-  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
-
-  const auto& rest = base_.mesh.positions;
-  const std::size_t n = rest.size();
-  const int unknowns = static_cast<int>(6 * nodes);
-  std::vector<Eigen::Vector3f> posed, normals;
-  std::vector<std::int32_t> match(n);
-  constexpr int kCandidates = 8;
-
-  // Where node j put node k in the previous frame, in node j's rest coordinates: the rigidity holds
-  // the shape the last frame had, not the key frame's (a limb bent away from its rest pose is not
-  // pulled back straight).
-  std::vector<std::vector<Eigen::Vector3d>> anchors(nodes);
-  for (std::size_t j = 0; j < nodes; ++j) {
-    const RigidTransform inverse = Inverse(previous[j]);
-    for (std::int32_t k : graph_.adjacent[j]) {
-      anchors[j].push_back(
-          inverse.Apply(previous[k].Apply(rest[graph_.node_vertices[k]])).cast<double>());
-    }
-  }
-  // Correspondence radii halving from the search distance to 2 tolerances.
-  std::vector<float> radii;
-  for (float r = options_.max_distance; r > 2.5f * options_.tolerance; r *= 0.5f) {
-    radii.push_back(r);
-  }
-  radii.push_back(2 * options_.tolerance);
-  const double rigidity = options_.rigidity * edge_weight_;
-  // Whether the data's normals face the way the base's do (a capture may wind its views the
-  // other way round): the sign most nearest points within the search distance agree on.
-  float facing = 1;
-  {
-    PoseVertices(graph_.motion, predicted, rest, &posed);
-    ComputeVertexNormals(posed, base_.mesh.triangles, &normals);
-    long vote = 0;
-    for (std::size_t v = 0; v < n; ++v) {
-      std::uint32_t index = 0;
-      float squared = 0;
-      if (tree.knnSearch(posed[v].data(), 1, &index, &squared) == 1 &&
-          squared <= options_.max_distance * options_.max_distance) {
-        const float cosine = frame.normals[index].dot(normals[v]);
-        vote += cosine >= options_.min_normal_cos ? 1 : cosine <= -options_.min_normal_cos ? -1 : 0;
-      }
-    }
-    if (vote < 0) facing = -1;
-  }
-  // Poses the base and finds every vertex's correspondence (`match`, -1: none): the nearest data
-  // point within `radius` whose normal agrees. Returns how many vertices have one.
-  auto correspond = [&](const std::vector<RigidTransform>& transforms, float radius) {
-    PoseVertices(graph_.motion, transforms, rest, &posed);
-    ComputeVertexNormals(posed, base_.mesh.triangles, &normals);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
-      match[v] = -1;
-      std::uint32_t index[kCandidates];
-      float squared[kCandidates];
-      const std::size_t found = tree.knnSearch(posed[v].data(), kCandidates, index, squared);
-      for (std::size_t k = 0; k < found; ++k) {
-        if (squared[k] > radius * radius) break;
-        const Eigen::Vector3f& nd = frame.normals[index[k]];
-        if (facing * nd.dot(normals[v]) >= options_.min_normal_cos) {
-          match[v] = static_cast<std::int32_t>(index[k]);
-          break;
-        }
-      }
-    });
-    return static_cast<std::size_t>(
-        std::count_if(match.begin(), match.end(), [](std::int32_t m) { return m >= 0; }));
-  };
-  // Gauss-Newton from `transforms`, coarse to fine.
-  auto solve = [&](std::vector<RigidTransform> transforms) {
-    for (const float radius : radii) {
-      for (int iteration = 0; iteration < options_.iterations; ++iteration) {
-        correspond(transforms, radius);
-        // Each node's posed centre c: a step turns its points y about it,
-        // y' = y + w x (y - c) + t (linearised in the node's turn w and shift t).
-        std::vector<Eigen::Vector3d> centres(nodes);
-        std::vector<Eigen::Matrix3d> rotations(nodes);
-        for (std::size_t j = 0; j < nodes; ++j) {
-          rotations[j] = transforms[j].rotation.toRotationMatrix().cast<double>();
-          centres[j] = rotations[j] * rest[graph_.node_vertices[j]].cast<double>() +
-                       transforms[j].translation.cast<double>();
-        }
-        std::vector<Eigen::Triplet<double>> triplets;
-        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
-        // Adds J^T M J and -J^T M r for a residual r with metric M and blocks of J per node.
-        auto add = [&](const std::array<std::int32_t, 2 * kMaxInfluences>& which,
-                       const std::array<Eigen::Matrix<double, 3, 6>, 2 * kMaxInfluences>& blocks,
-                       int count, const Eigen::Matrix3d& metric, const Eigen::Vector3d& residual) {
-          for (int a = 0; a < count; ++a) {
-            const Eigen::Matrix<double, 6, 3> jt_m = blocks[a].transpose() * metric;
-            rhs.segment<6>(6 * which[a]) -= jt_m * residual;
-            for (int b = 0; b < count; ++b) {
-              const Eigen::Matrix<double, 6, 6> h = jt_m * blocks[b];
-              for (int r = 0; r < 6; ++r) {
-                for (int c = 0; c < 6; ++c) {
-                  triplets.emplace_back(6 * which[a] + r, 6 * which[b] + c, h(r, c));
-                }
-              }
-            }
-          }
-        };
-        std::array<std::int32_t, 2 * kMaxInfluences> which{};
-        std::array<Eigen::Matrix<double, 3, 6>, 2 * kMaxInfluences> blocks;
-        std::size_t matched = 0;
-        for (std::size_t v = 0; v < n; ++v) {
-          if (match[v] < 0) continue;
-          ++matched;
-          const Eigen::Vector3d p = rest[v].cast<double>();
-          const Eigen::Vector3d target = frame.points[match[v]].cast<double>();
-          const Eigen::Vector3d nd = frame.normals[match[v]].cast<double>();
-          const VertexBlend& blend = graph_.motion.blends[v];
-          for (int k = 0; k < blend.count; ++k) {
-            const std::uint32_t j = blend.influences[k].segment;
-            const double w = blend.influences[k].weight;
-            const Eigen::Vector3d y = rotations[j] * p + transforms[j].translation.cast<double>();
-            which[k] = static_cast<std::int32_t>(j);
-            blocks[k].leftCols<3>() = -w * Skew(y - centres[j]);
-            blocks[k].rightCols<3>() = w * Eigen::Matrix3d::Identity();
-          }
-          const Eigen::Vector3d residual = posed[v].cast<double>() - target;
-          const Eigen::Matrix3d metric =
-              nd * nd.transpose() + options_.point_weight * Eigen::Matrix3d::Identity();
-          add(which, blocks, blend.count, metric, residual);
-        }
-        // Rigidity: node j puts node k where node k puts itself.
-        for (std::size_t j = 0; j < nodes; ++j) {
-          for (std::size_t e = 0; e < graph_.adjacent[j].size(); ++e) {
-            const std::int32_t k = graph_.adjacent[j][e];
-            const Eigen::Vector3d g = anchors[j][e];
-            const Eigen::Vector3d y = rotations[j] * g + transforms[j].translation.cast<double>();
-            which[0] = static_cast<std::int32_t>(j);
-            which[1] = k;
-            blocks[0].leftCols<3>() = -Skew(y - centres[j]);
-            blocks[0].rightCols<3>() = Eigen::Matrix3d::Identity();
-            blocks[1].leftCols<3>().setZero();
-            blocks[1].rightCols<3>() = -Eigen::Matrix3d::Identity();
-            add(which, blocks, 2, rigidity * Eigen::Matrix3d::Identity(), y - centres[k]);
-          }
-        }
-        if (matched == 0) break;
-        // Damping: a node neither data nor neighbours decide stays where it is.
-        const double damping = 1e-6 * rigidity;
-        for (int i = 0; i < unknowns; ++i) triplets.emplace_back(i, i, damping);
-        Eigen::SparseMatrix<double> system(unknowns, unknowns);
-        system.setFromTriplets(triplets.begin(), triplets.end());
-        const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-        if (solver.info() != Eigen::Success) break;
-        const Eigen::VectorXd step = solver.solve(rhs);
-        if (solver.info() != Eigen::Success || !step.allFinite()) break;
-        for (std::size_t j = 0; j < nodes; ++j) {
-          const Eigen::Vector3d omega = step.segment<3>(6 * j);
-          const Eigen::Vector3d tau = step.segment<3>(6 * j + 3);
-          const double angle = omega.norm();
-          const Eigen::Quaterniond turn =
-              angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle))
-                        : Eigen::Quaterniond::Identity();
-          const Eigen::Vector3d t = transforms[j].translation.cast<double>();
-          transforms[j].rotation = (turn.cast<float>() * transforms[j].rotation).normalized();
-          transforms[j].translation = (turn * (t - centres[j]) + centres[j] + tau).cast<float>();
-        }
-      }
-    }
-    return transforms;
-  };
+  FrameSolver solver(base_, graph_, options_, frame, previous, options_.rigidity * edge_weight_);
   // From the constant-velocity prediction and, where it differs, from the last pose (a part that
-  // stops or turns back is found from where it was): the pose more of the base's vertices find data
-  // near (within the last radius) is kept.
-  std::vector<RigidTransform> best = solve(predicted);
+  // stops or turns back is found from where it was): the pose more of the base's vertices find
+  // data near (within the last radius) is kept.
+  std::vector<RigidTransform> best = solver.Solve(predicted);
   if (!before.empty()) {
     std::vector<RigidTransform> held =
-        solve(std::vector<RigidTransform>(previous.begin(), previous.end()));
-    if (correspond(held, radii.back()) > correspond(best, radii.back())) best = std::move(held);
+        solver.Solve(std::vector<RigidTransform>(previous.begin(), previous.end()));
+    if (solver.Matched(held) > solver.Matched(best)) best = std::move(held);
   }
   return best;
 }

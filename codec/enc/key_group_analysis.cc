@@ -526,8 +526,13 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   for (int t = start + 1; t < ctx.end; ++t) {
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies->erase(proxies->begin(), proxies->lower_bound(t));
-    if (!proxies->count(t)) {
-      MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
+    // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
+    std::vector<TriangleMesh> views;
+    const bool cached = proxies->count(t) > 0;
+    if (!cached || options.tuning.deform_track_fused) {
+      MESHVID_ASSIGN_OR_RETURN(views, ctx.source.LoadFrame(t));
+    }
+    if (!cached) {
       MESHVID_ASSIGN_OR_RETURN(
           (*proxies)[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
     }
@@ -538,7 +543,6 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     std::vector<RigidTransform> next;
     if (options.tuning.deform_track_fused) {
       // The frame fused (closed where no view saw it, as a key frame's base would be).
-      MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
       MESHVID_ASSIGN_OR_RETURN(const TriangleMesh fused,
                                FuseFrame(ctx, views, options.tuning.base_fusion_points));
       const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(fused);

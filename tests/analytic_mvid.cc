@@ -83,14 +83,8 @@ MotionModel TwoSegments(const TriangleMesh& base) {
 }
 
 MotionModel DeformationNodes(const TriangleMesh& base, float spacing) {
-  MotionModel model;
-  const auto neighbours = VertexNeighbours(base);
-  model.node_vertices = SampleDeformationNodes(base, neighbours, spacing);
-  model.node_spacing = spacing;
-  model.segment_count = static_cast<std::uint32_t>(model.node_vertices.size());
-  auto blends = DeriveNodeBlends(base, neighbours, model.node_vertices, spacing);
-  if (blends.ok()) model.blends = std::move(*blends);
-  return model;
+  StatusOr<MotionModel> model = SampleNodeMotion(base, VertexNeighbours(base), spacing);
+  return model.ok() ? std::move(*model) : MotionModel{};
 }
 
 std::vector<RigidTransform> TransformsAt(int frame) {

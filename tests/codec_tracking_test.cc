@@ -170,7 +170,7 @@ TEST(DeformationGraph, CoversEveryVertexWithNearNodesHeldTogether) {
   StatusOr<DeformationGraph> built = BuildDeformationGraph(topology, spacing);
   ASSERT_TRUE(built.ok()) << built.status().ToString();
   const DeformationGraph& graph = *built;
-  const std::size_t nodes = graph.node_vertices.size();
+  const std::size_t nodes = graph.node_count();
   // Nodes cover the sphere's area (4 pi) about one per spacing-disc, not one per vertex.
   EXPECT_GE(nodes, 12u);
   EXPECT_LE(nodes, 120u);
@@ -183,7 +183,8 @@ TEST(DeformationGraph, CoversEveryVertexWithNearNodesHeldTogether) {
       const BlendInfluence& influence = blend.influences[k];
       // Weights in 32nds; every influencing node lies within 3 spacings along the surface.
       EXPECT_FLOAT_EQ(influence.weight * 32, std::round(influence.weight * 32));
-      const Eigen::Vector3f& node = sphere.positions[graph.node_vertices[influence.segment]];
+      const Eigen::Vector3f& node =
+          sphere.positions[graph.motion.node_vertices[influence.segment]];
       EXPECT_LT((node - sphere.positions[v]).norm(), 3 * spacing);
     }
   }
@@ -218,7 +219,7 @@ TEST(DeformationTracker, FollowsACylinderBendingTenDegreesAFrame) {
   options.tolerance = 0.005f * diagonal;
   const DeformationTracker tracker(topology, graph, options);
   std::vector<std::vector<RigidTransform>> tracks{
-      std::vector<RigidTransform>(graph.node_vertices.size())};
+      std::vector<RigidTransform>(graph.node_count())};
   std::vector<Eigen::Vector3f> posed;
   for (int f = 1; f < 25; ++f) {
     const TriangleMesh data = BentCylinder(120, 64, SwingAngle(f));

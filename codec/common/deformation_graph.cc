@@ -141,6 +141,18 @@ StatusOr<std::vector<VertexBlend>> DeriveNodeBlends(
   return blends;
 }
 
+StatusOr<MotionModel> SampleNodeMotion(const TriangleMesh& mesh,
+                                       const std::vector<std::vector<std::uint32_t>>& neighbours,
+                                       float spacing) {
+  MotionModel model;
+  model.node_vertices = SampleDeformationNodes(mesh, neighbours, spacing);
+  model.segment_count = static_cast<std::uint32_t>(model.node_vertices.size());
+  model.node_spacing = spacing;
+  MESHVID_ASSIGN_OR_RETURN(model.blends,
+                           DeriveNodeBlends(mesh, neighbours, model.node_vertices, spacing));
+  return model;
+}
+
 Status CompleteNodeBlends(const TriangleMesh& mesh, MotionModel* model) {
   if (model->node_vertices.size() != model->segment_count) {
     return CorruptError("deformation graph: " + std::to_string(model->node_vertices.size()) +

@@ -38,6 +38,12 @@ StatusOr<std::vector<VertexBlend>> DeriveNodeBlends(
     const TriangleMesh& mesh, const std::vector<std::vector<std::uint32_t>>& neighbours,
     std::span<const std::uint32_t> node_vertices, float spacing);
 
+/// The motion model of nodes sampled over `mesh` `spacing` apart (SampleDeformationNodes), with
+/// every vertex's blend derived from them (DeriveNodeBlends): what MOTN version 3 stores.
+StatusOr<MotionModel> SampleNodeMotion(const TriangleMesh& mesh,
+                                       const std::vector<std::vector<std::uint32_t>>& neighbours,
+                                       float spacing);
+
 /// Fills `model`'s blends from its nodes (MotionModel::node_vertices) and `mesh`.
 Status CompleteNodeBlends(const TriangleMesh& mesh, MotionModel* model);
 

@@ -65,6 +65,14 @@ struct MotionModel {
   float node_spacing = 0;
 };
 
+/// MOTN `motion_version` values (spec/mvid-codec.md 2.1-2.3). 1: stored blends, no surface
+/// mask; 2: stored blends and `mask_triangle_count` (a model without a mask is written as 1,
+/// so the field is not spent on saying "no mask"); 3: a deformation graph's nodes instead of
+/// blends, and the mask count.
+inline constexpr std::uint8_t kMotionVersionWithoutMask = 1;
+inline constexpr std::uint8_t kMotionVersionWithMask = 2;
+inline constexpr std::uint8_t kMotionVersionNodes = 3;
+
 /// Checks counts, segment indices, weights in [0, 1] summing to 1 (within 1e-3).
 Status ValidateMotionModel(const MotionModel& model, std::size_t vertex_count);
 

@@ -12,9 +12,8 @@ namespace meshvid {
 namespace {
 
 /// Versions this decoder reads: 1 (no surface mask), 2 (with one), 3 (deformation nodes).
-constexpr std::uint8_t kMotionVersionMin = 1;
-constexpr std::uint8_t kMotionVersionMax = 3;
-constexpr std::uint8_t kMotionVersionNodes = 3;
+constexpr std::uint8_t kMotionVersionMin = kMotionVersionWithoutMask;
+constexpr std::uint8_t kMotionVersionMax = kMotionVersionNodes;
 /// Bytes of one vertex blend in the raw MOTN body: count + 4 x (u32 segment, u16 weight).
 constexpr std::size_t kBlendBytes = 1 + kMaxInfluences * 6;
 /// Bytes of one transform in the raw transform body: 6 zig-zag u32.

@@ -39,12 +39,12 @@ class FrameSolver {
     // Where node j put node k in the previous frame, in node j's rest coordinates: the rigidity
     // holds the shape the last frame had, not the key frame's (a limb bent away from its rest
     // pose is not pulled back straight).
-    anchors_.resize(graph.node_vertices.size());
+    anchors_.resize(graph.node_count());
     for (std::size_t j = 0; j < anchors_.size(); ++j) {
       const RigidTransform inverse = Inverse(previous[j]);
       for (std::int32_t k : graph.adjacent[j]) {
         anchors_[j].push_back(
-            inverse.Apply(previous[k].Apply(rest[graph.node_vertices[k]])).cast<double>());
+            inverse.Apply(previous[k].Apply(rest[graph.motion.node_vertices[k]])).cast<double>());
       }
     }
     // Correspondence radii halving from the search distance to 2 tolerances.
@@ -137,7 +137,7 @@ class FrameSolver {
   /// system cannot be solved (the transforms are then left as they were).
   bool Step(std::vector<RigidTransform>* transforms) {
     const auto& rest = base_.mesh.positions;
-    const std::size_t nodes = graph_.node_vertices.size();
+    const std::size_t nodes = graph_.node_count();
     const int unknowns = static_cast<int>(6 * nodes);
     // Each node's posed centre c: a step turns its points y about it,
     // y' = y + w x (y - c) + t (linearised in the node's turn w and shift t).
@@ -145,7 +145,7 @@ class FrameSolver {
     std::vector<Eigen::Matrix3d> rotations(nodes);
     for (std::size_t j = 0; j < nodes; ++j) {
       rotations[j] = (*transforms)[j].rotation.toRotationMatrix().cast<double>();
-      centres[j] = rotations[j] * rest[graph_.node_vertices[j]].cast<double>() +
+      centres[j] = rotations[j] * rest[graph_.motion.node_vertices[j]].cast<double>() +
                    (*transforms)[j].translation.cast<double>();
     }
     triplets_.clear();
@@ -233,17 +233,13 @@ class FrameSolver {
 
 StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing) {
   DeformationGraph graph;
-  graph.node_vertices = SampleDeformationNodes(base.mesh, base.neighbours, node_spacing);
-  MotionModel& motion = graph.motion;
-  motion.segment_count = static_cast<std::uint32_t>(graph.node_vertices.size());
-  motion.node_vertices = graph.node_vertices;
-  motion.node_spacing = node_spacing;
-  MESHVID_ASSIGN_OR_RETURN(motion.blends, DeriveNodeBlends(base.mesh, base.neighbours,
-                                                           graph.node_vertices, node_spacing));
+  MESHVID_ASSIGN_OR_RETURN(graph.motion,
+                           SampleNodeMotion(base.mesh, base.neighbours, node_spacing));
+  const MotionModel& motion = graph.motion;
   // Nodes that blend a vertex together, and nodes nearest to the two ends of an edge (a node whose
   // vertices lie farther than its reach from other nodes, on a long sliver, is not left free), are
   // held together.
-  graph.adjacent.assign(graph.node_vertices.size(), {});
+  graph.adjacent.assign(graph.node_count(), {});
   const std::size_t n = base.mesh.vertex_count();
   for (std::uint32_t v = 0; v < n; ++v) {
     const VertexBlend& blend = motion.blends[v];
@@ -279,7 +275,7 @@ DeformationTracker::DeformationTracker(const BaseTopology& base, const Deformati
 std::vector<RigidTransform> DeformationTracker::Track(
     const TrackingData& frame, std::span<const RigidTransform> previous,
     std::span<const RigidTransform> before) const {
-  const std::size_t nodes = graph_.node_vertices.size();
+  const std::size_t nodes = graph_.node_count();
   std::vector<RigidTransform> predicted(previous.begin(), previous.end());
   if (before.size() != previous.size()) before = {};
   for (std::size_t j = 0; j < nodes && !before.empty(); ++j) {

@@ -26,11 +26,11 @@ namespace meshvid {
 
 /// The nodes of a base: what does not change between frames.
 struct DeformationGraph {
-  std::vector<std::uint32_t> node_vertices;         ///< the base vertex each node sits on
   std::vector<std::vector<std::int32_t>> adjacent;  ///< per node, the nodes it is held to
-  /// The blend of every base vertex over at most kMaxInfluences nodes (segment = node), with
-  /// the nodes and their spacing.
+  /// The nodes (segment s sits on base vertex motion.node_vertices[s]), their spacing, and the
+  /// blend of every base vertex over at most kMaxInfluences of them.
   MotionModel motion;
+  std::size_t node_count() const { return motion.node_vertices.size(); }
 };
 
 /// Samples nodes over `base` about `node_spacing` apart along its edges and blends every

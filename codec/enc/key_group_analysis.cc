@@ -496,7 +496,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   MESHVID_ASSIGN_OR_RETURN(const DeformationGraph graph,
                            BuildDeformationGraph(topology, ctx.lengths.node_spacing));
   analysis->motion = graph.motion;
-  const int nodes = static_cast<int>(graph.node_vertices.size());
+  const int nodes = static_cast<int>(graph.node_count());
   summary.segments = nodes;
   summary.patches = 0;
   summary.registered_share = 1;

@@ -13,14 +13,6 @@
 namespace meshvid {
 namespace {
 
-// motion_version 1 has no surface mask; 2 adds `mask_triangle_count` and the mask. A model
-// without a mask is written as version 1 (spec/mvid-codec.md 2.1), so the field is not spent on
-// saying "no mask".
-constexpr std::uint8_t kMotionVersionWithoutMask = 1;
-constexpr std::uint8_t kMotionVersionWithMask = 2;
-/// motion_version 3: a deformation graph's nodes instead of blends, and the mask count.
-constexpr std::uint8_t kMotionVersionNodes = 3;
-
 std::uint32_t ZigZagDelta(std::int32_t from, std::int32_t to) {
   const auto delta = static_cast<std::int32_t>(static_cast<std::uint32_t>(to) -
                                                static_cast<std::uint32_t>(from));

@@ -169,6 +169,39 @@ TEST(DecimateMeshTest, PlaneToTriangleTargetKeepsOutline) {
   for (const Vector3f& n : decimated->normals) EXPECT_GT(n.z(), 0.999f);
 }
 
+/// The longest edge of `mesh`.
+float LongestEdge(const TriangleMesh& mesh) {
+  float longest = 0;
+  for (const Triangle& t : mesh.triangles) {
+    for (int c = 0; c < 3; ++c) {
+      longest = std::max(longest, (mesh.positions[t[c]] - mesh.positions[t[(c + 1) % 3]]).norm());
+    }
+  }
+  return longest;
+}
+
+// A flat square decimates, by quadrics alone, into a few triangles spanning it; the edge bound
+// stops the collapses that would leave an edge longer than asked, wherever they are.
+TEST(DecimateMeshTest, MaxEdgeLengthKeepsEveryEdgeShort) {
+  const TriangleMesh plane = testing::MakeGridPlane(1.0f, 40);
+  DecimationOptions options;
+  options.target_vertices = 4;
+  auto unbounded = DecimateMesh(plane, options);
+  ASSERT_TRUE(unbounded.ok()) << unbounded.status().ToString();
+  EXPECT_GT(LongestEdge(*unbounded), 0.9f);
+  options.max_edge_length = 0.2;
+  auto bounded = DecimateMesh(plane, options);
+  ASSERT_TRUE(bounded.ok()) << bounded.status().ToString();
+  EXPECT_LE(LongestEdge(*bounded), 0.2f);
+  // At least a 6 x 6 lattice of vertices is needed to cover the square with such edges.
+  EXPECT_GE(bounded->vertex_count(), 36u);
+  EXPECT_LT(bounded->vertex_count(), plane.vertex_count() / 4);
+  EXPECT_NEAR(SurfaceArea(*bounded), 1.0, 1e-4);
+  EXPECT_TRUE(ValidateMesh(*bounded, "decimated").ok());
+  options.max_edge_length = -1;
+  EXPECT_FALSE(DecimateMesh(plane, options).ok());
+}
+
 TEST(DecimateMeshTest, LockBoundaryKeepsEveryBoundaryVertex) {
   const TriangleMesh plane = testing::MakeGridPlane(1.0f, 60);  // 240 boundary vertices
   DecimationOptions options;

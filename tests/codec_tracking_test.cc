@@ -244,10 +244,13 @@ TEST(DeformationTracker, FollowsACylinderBendingTenDegreesAFrame) {
   }
 }
 
-/// Encodes one view per frame (a whole cylinder each) with a 600-vertex base, FFV1.
+/// Encodes one view per frame (a whole cylinder each) with a 600-vertex base, FFV1; the
+/// decimations' edge bounds (EncoderTuning::base_max_edge, proxy_max_edge) as given (0: the
+/// defaults).
 StatusOr<EncodeSummary> EncodeOneViewFrames(const std::vector<TriangleMesh>& frames,
                                             std::vector<std::uint8_t>* bytes,
-                                            bool deformation_tracking = false) {
+                                            bool deformation_tracking = false,
+                                            double max_edge = 0) {
   std::vector<std::vector<TriangleMesh>> views;
   for (const TriangleMesh& frame : frames) views.push_back({frame});
   MESHVID_ASSIGN_OR_RETURN(MemoryFrameSource source,
@@ -259,6 +262,7 @@ StatusOr<EncodeSummary> EncodeOneViewFrames(const std::vector<TriangleMesh>& fra
   // One view of 7,800 vertices: its proxy (5% by default) would be coarser than the base.
   options.tuning.proxy_fraction = 0.25;
   options.tuning.deformation_tracking = deformation_tracking;
+  options.tuning.base_max_edge = options.tuning.proxy_max_edge = max_edge;
   return EncodeCapture(
       source,
       [bytes](std::span<const std::uint8_t> b) {
@@ -287,58 +291,47 @@ std::vector<double> RmsToFrames(const std::vector<std::uint8_t>& bytes,
   return rms;
 }
 
-// Disabled: the target, not met yet. Measured (default settings): 60 key groups of
-// 1 frame; a key frame's base leaves 0.4% of its own points unexplained, the next frame 26%. On the analytic base (the same tracker, 12 nodes of 48 vertices, all free)
-// the RMS distance to the data is 0.3% of the diagonal at frame 1, 1.7% at frame 2 and 5%
-// at 60 degrees with the default stiffness of 1; 0.1%, 0.2% and 1.7% with a stiffness of 0.1.
-TEST(GraphTracking, DISABLED_FollowsABendingCylinderInOneKeyGroup) {
+// The bending cylinder: two rigid halves and a smooth elbow swinging 10 degrees a
+// frame between +60 and -60 degrees, 60 frames, one closed view a frame. The embedded
+// deformation follows it with one key group; the file stores its nodes (MOTN version 3) and
+// every frame decodes within the tolerance (measured: RMS 0.013-0.022 tolerances, 296 nodes).
+// The piecewise-rigid segmentation makes every frame a key group. The deformation made 13 key
+// groups (1-11 frames) while the base and proxy decimations had no edge bound: the straight
+// key frame decimated into slivers along the whole tube, which cannot bend at the elbow, and
+// into a proxy with points only at the tube's ends.
+TEST(DeformationTracking, FollowsABendingCylinderOver60FramesInOneKeyGroup) {
   const int frame_count = 60;
   std::vector<TriangleMesh> frames;
   for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
   std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   ASSERT_EQ(summary->key_groups.size(), 1u);
   EXPECT_EQ(summary->key_groups[0].frames, frame_count);
-  // Every frame decodes within the segmentation's tolerance (0.5% of the diagonal) of the
-  // data, RMS over the decoded vertices.
-  const std::vector<double> rms = RmsToFrames(bytes, frames);
-  for (std::size_t f = 0; f < rms.size(); ++f) {
-    EXPECT_LT(rms[f], summary->tolerance) << "frame " << f;
-  }
-}
-
-// The embedded-deformation tracker in the encoder: the piecewise-rigid segmentation makes
-// every frame of this swing a key group (24 of 1 frame); the deformation tracks it through
-// 5 key groups (measured: 1, 1, 4, 11 and 7 frames; a key frame at 0 degrees gives a base of
-// slivers along the straight tube, which cannot bend at the elbow within the displacement
-// range). The file stores the nodes (MOTN version 3) and decodes every frame near its data.
-TEST(DeformationTracking, FollowsTheBendingCylinderWithFewKeyGroups) {
-  std::vector<TriangleMesh> frames;
-  for (int f = 0; f < 24; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
-  std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
-  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
-  EXPECT_LE(summary->key_groups.size(), 8u);
-  for (const KeyGroupSummary& k : summary->key_groups) EXPECT_GT(k.segments, 50);
+  EXPECT_GT(summary->key_groups[0].segments, 50);
+  // Every frame decodes well within the segmentation's tolerance (0.5% of the diagonal) of
+  // the data, RMS over the decoded vertices.
   const std::vector<double> rms = RmsToFrames(bytes, frames);
   ASSERT_EQ(rms.size(), frames.size());
   for (std::size_t f = 0; f < rms.size(); ++f) {
-    EXPECT_LT(rms[f], summary->tolerance) << "frame " << f;
+    EXPECT_LT(rms[f], 0.1 * summary->tolerance) << "frame " << f;
   }
 }
 
 // A cylinder bending 20 to 50 degrees at a tight elbow, one closed view a frame: the elbow's
 // inside folds on itself and no seed of the segmentation stays within the tolerance of the
 // data (the encoder used to stop with "no rigid segment found"). The encode goes on with
-// patches and key groups, and every frame decodes near its data.
+// patches and key groups, and every frame decodes near its data. The decimations are left
+// without an edge bound: with the default bounds, the base of slivers this test was built on
+// is not made and the segmentation finds its segments.
 TEST(KeyGroupFallback, AFoldedElbowThatDefeatsEverySegmentStillEncodesEveryFrame) {
   std::vector<TriangleMesh> frames;
   for (int f = 0; f < 4; ++f) {
     frames.push_back(BentCylinder(120, 64, -float(20 + 10 * f) * kPi / 180));
   }
   std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
+  StatusOr<EncodeSummary> summary =
+      EncodeOneViewFrames(frames, &bytes, /*deformation_tracking=*/false, /*max_edge=*/1e6);
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   EXPECT_TRUE(std::any_of(summary->key_groups.begin(), summary->key_groups.end(),
                           [](const KeyGroupSummary& k) { return k.registered_share == 0; }))

@@ -165,9 +165,18 @@ class ModBoundaryQuadricT : public OpenMesh::Decimater::ModBaseT<MeshT> {
     min_cos_ = static_cast<float>(std::cos(degrees * M_PI / 180.0));
   }
 
+  /// Collapses that leave an edge longer than `length` (> 0) become illegal.
+  void set_max_edge_length(double length) {
+    max_squared_edge_ = length > 0 ? static_cast<float>(length * length) : 0;
+  }
+
   float collapse_priority(const CollapseInfo& ci) override {
     MeshT& m = Base::mesh();
     for (auto h : m.voh_range(ci.v0)) {
+      if (max_squared_edge_ > 0 && m.to_vertex_handle(h) != ci.v1 &&
+          (m.point(m.to_vertex_handle(h)) - ci.p1).sqrnorm() > max_squared_edge_) {
+        return Base::ILLEGAL_COLLAPSE;
+      }
       const auto face = m.face_handle(h);
       if (!face.is_valid() || face == ci.fl || face == ci.fr) continue;
       const auto next = m.next_halfedge_handle(h);
@@ -198,6 +207,7 @@ class ModBoundaryQuadricT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   // Boundary planes weigh like a face of the edge's squared length, a few times over.
   static constexpr double kBoundaryWeight = 4.0;
   float min_cos_ = 0;  // 90 degrees: no face may flip
+  float max_squared_edge_ = 0;  // 0: unbounded
   OpenMesh::VPropHandleT<OpenMesh::Geometry::Quadricd> quadrics_;
 };
 
@@ -411,6 +421,10 @@ StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOp
     return InvalidArgumentError("decimation max_normal_deviation_degrees must be in [0, 180], "
                                 "got " + std::to_string(options.max_normal_deviation_degrees));
   }
+  if (!(options.max_edge_length >= 0) || !std::isfinite(options.max_edge_length)) {
+    return InvalidArgumentError("decimation max_edge_length must be finite and >= 0, got " +
+                                std::to_string(options.max_edge_length));
+  }
   if (!(options.max_aspect_ratio == 0 || options.max_aspect_ratio >= 1)) {
     return InvalidArgumentError("decimation max_aspect_ratio must be 0 or >= 1, got " +
                                 std::to_string(options.max_aspect_ratio));
@@ -438,6 +452,7 @@ StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOp
   ModBoundaryQuadricT<OmMesh>::Handle quadric;
   decimater.add(quadric);
   decimater.SetQuadric(&decimater.module(quadric));
+  decimater.module(quadric).set_max_edge_length(options.max_edge_length);
   if (options.max_normal_deviation_degrees > 0) {
     OpenMesh::Decimater::ModNormalDeviationT<OmMesh>::Handle deviation;
     decimater.add(deviation);

@@ -31,6 +31,10 @@ struct DecimationOptions {
   /// If >= 1, refuse collapses that leave a triangle with an aspect ratio above this (and
   /// worse than before; OpenMesh's ModAspectRatio); 0: no shape constraint.
   double max_aspect_ratio = 0;
+  /// If > 0, refuse collapses that leave an edge longer than this (scene units; a long edge
+  /// stays only where the input had it); 0: unbounded. Quadrics alone collapse a straight
+  /// tube into slivers running its whole length, which cannot bend with it.
+  double max_edge_length = 0;
 };
 
 /// Decimates `mesh` by halfedge collapses ordered by quadric error (with the bounds above).

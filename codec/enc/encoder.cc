@@ -27,6 +27,11 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
   l.node_spacing = pick(o.tuning.node_spacing, 0.04);
+  // Edge bounds for the deformation's nodes (4% apart) to bend the base and find data along
+  // it; the segmentation's pieces need neither (its measured defaults stay as they were).
+  const bool deforming = o.tuning.deformation_tracking;
+  l.base_max_edge = pick(o.tuning.base_max_edge, deforming ? 0.03 : 0);
+  l.proxy_max_edge = pick(o.tuning.proxy_max_edge, deforming ? 0.04 : 0);
   return l;
 }
 
@@ -89,6 +94,9 @@ Status CheckOptions(const EncoderOptions& o) {
   if (!(o.tuning.reacquire_below >= 0 && o.tuning.reacquire_below <= 1) ||
       !(o.tuning.reacquire_gain >= 0 && o.tuning.reacquire_gain <= 1)) {
     return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
+  }
+  if (!(o.tuning.base_max_edge >= 0) || !(o.tuning.proxy_max_edge >= 0)) {
+    return bad("tuning.base_max_edge and tuning.proxy_max_edge must be >= 0");
   }
   if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
   if (!(o.tuning.node_rejoin_factor >= 0)) return bad("tuning.node_rejoin_factor must be >= 0");

@@ -48,6 +48,14 @@ struct EncoderTuning {
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;
+  /// Longest edge the base decimation leaves (0: with deformation_tracking 3% of the
+  /// diagonal, under the nodes' spacing; without, unbounded). Quadrics alone collapse a
+  /// straight tube into slivers along its whole length: they lie on the straight tube but
+  /// cannot bend with it (a 60-frame swing of a bending cylinder made 13 key groups
+  /// unbounded, one at 3%; 4% left 1.5% of its points unexplained at 60 degrees). Not bound
+  /// for the segmentation: its pieces do not bend, and 3% would make samba's bases 9% and a
+  /// 600-vertex base of two bodies 2.8x larger than unbounded.
+  double base_max_edge = 0;
   /// Draco position quantisation of the base meshes, bits per coordinate of the bounding box
   /// (the displacements correct what it moves along the normals). Samba, 3 views, 30 frames:
   /// 12 bits code each base in 39% fewer bytes than 16 for 0.01 mm more RMS error.
@@ -55,6 +63,11 @@ struct EncoderTuning {
 
   // --- correspondence (docs/encoder-method.md eq. 4)
   double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy
+  /// Longest edge a proxy's decimation leaves (0: with deformation_tracking 4% of the
+  /// diagonal; without, unbounded): its vertices are the deformation's data points and those
+  /// of the key-group fit, and a straight stretch decimated without bound keeps points only at
+  /// its ends (its middle then looks like surface thrown far from the data).
+  double proxy_max_edge = 0;
   double max_distance = 0;        ///< farthest correspondence along a normal (0: 8%)
   double max_angle_degrees = 60;  ///< largest angle between base normal and data normal
 

@@ -29,14 +29,16 @@ double SecondsSince(Clock::time_point start) {
 
 Status Cancelled() { return CancelledError("encode cancelled"); }
 
-StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction,
-                                std::span<const ViewCalibration> cameras) {
+StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
+                                bool free_space) {
+  const double fraction = ctx.options.tuning.proxy_fraction;
   std::vector<StatusOr<TriangleMesh>> decimated(views.size(), TriangleMesh{});
   tbb::parallel_for(std::size_t(0), views.size(), [&](std::size_t v) {
     if (views[v].empty()) return;
     DecimationOptions options;
     options.target_vertices = std::max<std::size_t>(
         16, static_cast<std::size_t>(fraction * double(views[v].vertex_count())));
+    options.max_edge_length = ctx.lengths.proxy_max_edge;
     decimated[v] = options.target_vertices >= views[v].vertex_count()
                        ? StatusOr<TriangleMesh>(views[v])
                        : DecimateMesh(views[v], options);
@@ -48,10 +50,11 @@ StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double f
   }
   FrameProxy result;
   if (proxy.empty()) return result;
-  if (!cameras.empty()) {
-    auto free_space = std::make_shared<const SeenFreeSpace>(
-        views, cameras, /*margin_pixels=*/0, /*min_facing_cosine=*/0.5f, kFreeSpacePixelBlock);
-    if (free_space->view_count() > 0) result.free_space = std::move(free_space);
+  if (free_space && !ctx.view_cameras.empty()) {
+    auto seen = std::make_shared<const SeenFreeSpace>(views, ctx.view_cameras, /*margin_pixels=*/0,
+                                                      /*min_facing_cosine=*/0.5f,
+                                                      kFreeSpacePixelBlock);
+    if (seen->view_count() > 0) result.free_space = std::move(seen);
   }
   MESHVID_ASSIGN_OR_RETURN(result.target, ShootingTarget::Create(proxy));
   result.normals = ComputeVertexNormals(proxy);
@@ -121,6 +124,7 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
   decimation.target_vertices = options.base_vertices;
   decimation.max_error = ctx.lengths.base_max_error;
   decimation.max_normal_deviation_degrees = options.tuning.base_max_normal_deviation_degrees;
+  decimation.max_edge_length = ctx.lengths.base_max_edge;
   TriangleMesh base = std::move(fused);
   if (base.vertex_count() > options.base_vertices) {
     MESHVID_ASSIGN_OR_RETURN(base, DecimateMesh(base, decimation));
@@ -438,8 +442,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     if (proxies->count(analysed[k])) continue;
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views,
                              ctx.source.LoadFrame(analysed[k]));
-    MESHVID_ASSIGN_OR_RETURN((*proxies)[analysed[k]],
-                             BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+    MESHVID_ASSIGN_OR_RETURN((*proxies)[analysed[k]], BuildProxy(ctx, views));
   }
   analysis->seconds_proxies += SecondsSince(stage_start);
   std::vector<const ShootingTarget*> targets;
@@ -463,7 +466,7 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     if (!ReportProgress(ctx.progress, "tracking", t - start, stop - start)) return Cancelled();
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     // Tracked only, never measured by the key-group fit: no free space needed.
-    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(views, options.tuning.proxy_fraction));
+    MESHVID_ASSIGN_OR_RETURN(FrameProxy proxy, BuildProxy(ctx, views, /*free_space=*/false));
     tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
                                    std::span(tracks.data(), std::size_t(t - start)));
   }
@@ -533,8 +536,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       MESHVID_ASSIGN_OR_RETURN(views, ctx.source.LoadFrame(t));
     }
     if (!cached) {
-      MESHVID_ASSIGN_OR_RETURN(
-          (*proxies)[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+      MESHVID_ASSIGN_OR_RETURN((*proxies)[t], BuildProxy(ctx, views));
     }
     const FrameProxy& proxy = (*proxies)[t];
     const std::span<const RigidTransform> before =
@@ -620,8 +622,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {
-      MESHVID_ASSIGN_OR_RETURN(
-          proxies[start], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(ctx, views));
     }
     MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
   }
@@ -704,8 +705,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies.erase(proxies.begin(), proxies.lower_bound(t));
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(
-        proxies[t], BuildProxy(views, options.tuning.proxy_fraction, ctx.view_cameras));
+    MESHVID_ASSIGN_OR_RETURN(proxies[t], BuildProxy(ctx, views));
     tracks.push_back(TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t], tracks));
     if (!explained(t, proxies[t])) {
       tracks.pop_back();

@@ -34,7 +34,8 @@ double SecondsSince(Clock::time_point start);
 struct Lengths {
   float scale = 1;
   float max_distance = 0, tolerance = 0, detail_max_distance = 0, outlier_distance = 0,
-        base_max_error = 0, reacquire_max_distance = 0, node_spacing = 0;
+        base_max_error = 0, reacquire_max_distance = 0, node_spacing = 0, base_max_edge = 0,
+        proxy_max_edge = 0;
 };
 
 /// A frame's views decimated into one correspondence target, and the target's vertices (the
@@ -51,10 +52,6 @@ struct FrameProxy {
 /// per view, since a key group holds up to key_group_window proxies).
 inline constexpr int kFreeSpacePixelBlock = 2;
 
-/// Decimates a frame's views into one proxy (fraction: share of each view's vertices kept);
-/// with `cameras` (EncodeContext::view_cameras), also what they saw through.
-StatusOr<FrameProxy> BuildProxy(const std::vector<TriangleMesh>& views, double fraction,
-                                std::span<const ViewCalibration> cameras = {});
 
 /// Proxies by frame, shared by consecutive key groups (a cut key group's later frames are
 /// the next one's first).
@@ -75,6 +72,12 @@ struct EncodeContext {
   /// The source's cameras when tuning.seen_free_space is on (empty: none used).
   std::vector<ViewCalibration> view_cameras;
 };
+
+/// Decimates a frame's views into one proxy (tuning.proxy_fraction of each view's vertices
+/// kept, no edge longer than lengths.proxy_max_edge); with `free_space`, also what the
+/// context's cameras (view_cameras) saw through.
+StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
+                                bool free_space = true);
 
 /// The error a cancelled progress callback ends an encode with.
 Status Cancelled();

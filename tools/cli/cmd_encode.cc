@@ -52,6 +52,8 @@ Status WithFlagNames(const Status& status) {
       {"base_vertices", "--base-vertices"},
       {"base_max_error", "--base-max-error"},
       {"base_max_normal_deviation_degrees", "--base-max-normal-deviation"},
+      {"base_max_edge", "--base-max-edge"},
+      {"proxy_max_edge", "--proxy-max-edge"},
       {"base_position_bits", "--base-bits"},
       {"tolerance", "--tol"},
       {"initial_tolerance_factor", "--tol-start"},
@@ -321,6 +323,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--base-max-normal-deviation", o.tuning.base_max_normal_deviation_degrees,
                   "Largest normal change of a decimation step, degrees")
       ->capture_default_str();
+  cmd->add_option("--base-max-edge", o.tuning.base_max_edge,
+                  "Longest edge the base decimation leaves, so the base can bend where the "
+                  "subject does (0: 3% of the size with --deform, unbounded without)")
+      ->capture_default_str();
   cmd->add_option("--base-bits", o.tuning.base_position_bits,
                   "Draco position quantisation of the base meshes, bits per coordinate "
                   "(8..24; the displacements correct what it moves along the normals)")
@@ -438,6 +444,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(1, 100));
   cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,
                   "Share of each view's vertices kept in its correspondence proxy")
+      ->capture_default_str();
+  cmd->add_option("--proxy-max-edge", o.tuning.proxy_max_edge,
+                  "Longest edge a correspondence proxy's decimation leaves (0: 4% of the size "
+                  "with --deform, unbounded without)")
       ->capture_default_str();
   cmd->add_option("--max-distance", o.tuning.max_distance,
                   "Farthest correspondence along a normal; also the coarsest tolerance of a new "

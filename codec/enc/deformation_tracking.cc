@@ -54,15 +54,15 @@ class FrameSolver {
     radii_.push_back(2 * options.tolerance);
   }
 
-  /// Gauss-Newton from `transforms`, coarse to fine (the first call also decides which way
-  /// the data's normals face, from its start).
-  std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms) {
+  /// Gauss-Newton from `transforms`, `iterations` steps per radius, coarse to fine (the first
+  /// call also decides which way the data's normals face, from its start).
+  std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms, int iterations) {
     if (!facing_known_) {
       facing_ = DataFacing(transforms);
       facing_known_ = true;
     }
     for (const float radius : radii_) {
-      for (int iteration = 0; iteration < options_.iterations; ++iteration) {
+      for (int iteration = 0; iteration < iterations; ++iteration) {
         if (Correspond(transforms, radius) == 0 || !Step(&transforms)) break;
       }
     }
@@ -283,15 +283,16 @@ std::vector<RigidTransform> DeformationTracker::Track(
   }
   if (frame.points.empty() || nodes == 0) return predicted;
   FrameSolver solver(base_, graph_, options_, frame, previous, options_.rigidity * edge_weight_);
-  // From the constant-velocity prediction and, where it differs, from the last pose (a part that
-  // stops or turns back is found from where it was): the pose more of the base's vertices find
-  // data near (within the last radius) is kept.
-  std::vector<RigidTransform> best = solver.Solve(predicted);
-  if (!before.empty()) {
-    std::vector<RigidTransform> held =
-        solver.Solve(std::vector<RigidTransform>(previous.begin(), previous.end()));
-    if (solver.Matched(held) > solver.Matched(best)) best = std::move(held);
-  }
+  // Without a velocity (the key group's second frame), from the last pose with more steps: the
+  // whole frame's motion is left to the solve.
+  if (before.empty()) return solver.Solve(std::move(predicted), options_.first_iterations);
+  // From the constant-velocity prediction and from the last pose (a part that stops or turns
+  // back is found from where it was): the pose more of the base's vertices find data near
+  // (within the last radius) is kept.
+  std::vector<RigidTransform> best = solver.Solve(predicted, options_.iterations);
+  std::vector<RigidTransform> held = solver.Solve(
+      std::vector<RigidTransform>(previous.begin(), previous.end()), options_.iterations);
+  if (solver.Matched(held) > solver.Matched(best)) best = std::move(held);
   return best;
 }
 

@@ -56,6 +56,8 @@ struct DeformationTrackingOptions {
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double point_weight = 0.1;
   int iterations = 3;  ///< Gauss-Newton steps per radius
+  /// Steps per radius on a frame without a velocity to predict from (Track's `before` empty).
+  int first_iterations = 3;
 };
 
 /// Tracks the nodes of one key group frame by frame.

@@ -106,7 +106,9 @@ Status CheckOptions(const EncoderOptions& o) {
         "tuning.node_spacing and tuning.deform_point_weight must be >= 0 and "
         "tuning.deform_rigidity positive");
   }
-  if (o.tuning.deform_iterations < 1) return bad("tuning.deform_iterations must be at least 1");
+  if (o.tuning.deform_iterations < 1 || o.tuning.deform_first_iterations < 1) {
+    return bad("tuning.deform_iterations and tuning.deform_first_iterations must be at least 1");
+  }
   if (o.tuning.reacquire_min_vertices < 3) {
     return bad("tuning.reacquire_min_vertices must be at least 3");
   }
@@ -215,7 +217,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   if (!(scale > 0)) {
     return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
   }
-  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}};
+  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();
   for (int v = 0; v < std::min<int>(source.view_count(), ctx.view_cameras.size()); ++v) {
     summary.free_space_views += ctx.view_cameras[v].CanProject();

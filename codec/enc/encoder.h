@@ -152,6 +152,12 @@ struct EncoderTuning {
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double deform_point_weight = 0.1;
   int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
+  /// Steps per radius on a key group's second frame, which has no velocity to predict from
+  /// (its start is the key frame's pose): arm-block's parts move up to 5.1 cm a frame, and 3
+  /// steps leave 4.5% of its first tracked frame's points beyond the displacement range, 10
+  /// leave 0.03%; over 60 frames of arm-block 6-ring, 29 key groups instead of 35
+  /// (bench/DEFORM.md).
+  int deform_first_iterations = 10;
   /// Track each frame to its views fused into a closed surface (as a key frame's base is
   /// fused) rather than to its views' proxy: where no view sees the subject, the surface is
   /// pulled where per-frame fusion would close it. Measured (60 frames, HEVC q40, key-group

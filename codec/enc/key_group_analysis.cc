@@ -510,6 +510,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   tracking.rigidity = options.tuning.deform_rigidity;
   tracking.point_weight = options.tuning.deform_point_weight;
   tracking.iterations = options.tuning.deform_iterations;
+  tracking.first_iterations = options.tuning.deform_first_iterations;
   const DeformationTracker tracker(topology, graph, tracking);
 
   MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,

@@ -77,6 +77,8 @@ Status WithFlagNames(const Status& status) {
       {"reacquire_min_vertices", "--reacquire-min-vertices"},
       {"reacquire_max_distance", "--reacquire-distance"},
       {"proxy_fraction", "--proxy-fraction"},
+      {"deform_iterations", "--deform-iterations"},
+      {"deform_first_iterations", "--deform-first-iterations"},
       {"max_distance", "--max-distance"},
       {"max_angle_degrees", "--max-angle"},
       {"detail_max_distance", "--detail-distance"},
@@ -440,6 +442,11 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
                   "With --deform, Gauss-Newton steps per correspondence radius")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--deform-first-iterations", o.tuning.deform_first_iterations,
+                  "With --deform, Gauss-Newton steps per radius on a key group's second frame "
+                  "(no velocity to predict its motion from yet)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
   cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,

@@ -52,7 +52,6 @@ struct FrameProxy {
 /// per view, since a key group holds up to key_group_window proxies).
 inline constexpr int kFreeSpacePixelBlock = 2;
 
-
 /// Proxies by frame, shared by consecutive key groups (a cut key group's later frames are
 /// the next one's first).
 using ProxyCache = std::map<int, FrameProxy>;

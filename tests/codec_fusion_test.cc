@@ -469,6 +469,12 @@ TEST(SeenFreeSpaceTest, InFrontOfTheDataOrPastItsEdgeWhereTheCameraFacesTheSurfa
   EXPECT_FALSE(free_space.Contains({0.21f, 0, 0}, grazing, 0.01f));
   EXPECT_FALSE(free_space.Contains({0, 0, 1.5f}, up, 0.01f));  // behind the camera
   EXPECT_FALSE(free_space.Contains({5, 0, 0}, up, 0.01f));     // outside its image
+  // Judged across the image too, a point past the edge by less than the tolerance (10 mm,
+  // 2.5 pixels there) is not in free space; 3 cm past it, or 5 cm in front of the edge, is.
+  using Verdict = SeenFreeSpace::Verdict;
+  EXPECT_EQ(free_space.Judge({0.21f, 0, 0}, up, 0.01f, /*across_too=*/true), Verdict::kSeen);
+  EXPECT_EQ(free_space.Judge({0.23f, 0, 0}, up, 0.01f, true), Verdict::kSeenThrough);
+  EXPECT_EQ(free_space.Judge({0.21f, 0, 0.05f}, up, 0.01f, true), Verdict::kSeenThrough);
   // A margin of 2 pixels (8 mm there) keeps the first points past the edge.
   const SeenFreeSpace with_margin(views, cameras, 2);
   EXPECT_FALSE(with_margin.Contains({0.205f, 0, 0}, up, 0.01f));

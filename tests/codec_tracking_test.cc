@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -244,36 +245,75 @@ TEST(DeformationTracker, FollowsACylinderBendingTenDegreesAFrame) {
   }
 }
 
-// A key group's second frame has no velocity to predict from: its whole motion is left to
-// the solve, which first_iterations gives more steps than a predicted frame's.
-TEST(DeformationTracker, MoreStepsFollowAFarFirstMove) {
-  const TriangleMesh base = BentCylinder(30, 20, 0);
-  const BaseTopology topology(base);
-  const float diagonal = BoundingBox(base).diagonal().norm();
-  StatusOr<DeformationGraph> built = BuildDeformationGraph(topology, 0.04f * diagonal);
-  ASSERT_TRUE(built.ok()) << built.status().ToString();
-  // The right half turned by 20 degrees at once (its end moves by 17% of the size).
-  const TriangleMesh data = BentCylinder(120, 64, 20 * kPi / 180);
-  const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(data);
-  auto surface = SurfaceDistance::Build(data);
-  ASSERT_TRUE(surface.ok());
-  DeformationTrackingOptions options;
-  options.max_distance = 0.08f * diagonal;
-  options.tolerance = 0.005f * diagonal;
-  std::vector<Eigen::Vector3f> posed;
-  auto worst_after = [&](int first_iterations) {
-    options.first_iterations = first_iterations;
-    const DeformationTracker tracker(topology, *built, options);
-    const std::vector<RigidTransform> key(built->node_count());
-    PoseVertices(built->motion, tracker.Track({data.positions, normals}, key, {}),
-                 base.positions, &posed);
+/// A straight cylinder's key group, tracked to one frame with no velocity to predict from
+/// (the key group's second frame): nodes 4% of the size apart, correspondences from 8% of the
+/// size down to 2 tolerances (0.5% of the size).
+class FirstFrameOfCylinder {
+ public:
+  FirstFrameOfCylinder() : base_(BentCylinder(30, 20, 0)), topology_(base_) {
+    diagonal_ = BoundingBox(base_).diagonal().norm();
+    StatusOr<DeformationGraph> built = BuildDeformationGraph(topology_, 0.04f * diagonal_);
+    EXPECT_TRUE(built.ok()) << built.status().ToString();
+    if (built.ok()) graph_ = *std::move(built);
+    options.max_distance = 0.08f * diagonal_;
+    options.tolerance = 0.005f * diagonal_;
+  }
+  float diagonal() const { return diagonal_; }
+  /// The farthest vertex of the base, tracked to `data` from the key frame's pose, from it.
+  double WorstDistanceAfterTracking(const TriangleMesh& data) const {
+    const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(data);
+    auto surface = SurfaceDistance::Build(data);
+    EXPECT_TRUE(surface.ok());
+    if (!surface.ok()) return std::numeric_limits<double>::infinity();
+    const DeformationTracker tracker(topology_, graph_, options);
+    const std::vector<RigidTransform> key(graph_.node_count());
+    std::vector<Eigen::Vector3f> posed;
+    PoseVertices(graph_.motion, tracker.Track({data.positions, normals}, key, {}),
+                 base_.positions, &posed);
     double worst = 0;
     for (const Eigen::Vector3f& p : posed) worst = std::max(worst, (*surface)->Distance(p));
     return worst;
-  };
+  }
+  DeformationTrackingOptions options;
+
+ private:
+  TriangleMesh base_;
+  BaseTopology topology_;
+  DeformationGraph graph_;
+  float diagonal_ = 0;
+};
+
+// A key group's second frame has no velocity to predict from: its whole motion is left to
+// the solve, which first_iterations gives more steps than a predicted frame's.
+TEST(DeformationTracker, MoreStepsFollowAFarFirstMove) {
+  FirstFrameOfCylinder cylinder;
+  // The right half turned by 20 degrees at once (its end moves by 17% of the size).
+  const TriangleMesh data = BentCylinder(120, 64, 20 * kPi / 180);
   // Measured: 4.3 tolerances off with 3 steps per radius, 0.16 with 10.
-  EXPECT_GT(worst_after(3), options.tolerance);
-  EXPECT_LT(worst_after(10), 0.5 * options.tolerance);
+  cylinder.options.first_iterations = 3;
+  EXPECT_GT(cylinder.WorstDistanceAfterTracking(data), cylinder.options.tolerance);
+  cylinder.options.first_iterations = 10;
+  EXPECT_LT(cylinder.WorstDistanceAfterTracking(data), 0.5 * cylinder.options.tolerance);
+}
+
+// A key group's second frame moved far as a whole, with no velocity to predict from: stiff at
+// the coarse radii, the tracker first moves the whole part, then lets it bend.
+TEST(DeformationTracker, StiffAtFirstAFarRigidMoveIsFollowed) {
+  FirstFrameOfCylinder cylinder;
+  // Bent by 10 degrees at the elbow, turned by 10 degrees as a whole and shifted by 5.6% of
+  // the size, all at once.
+  TriangleMesh data = BentCylinder(120, 64, 10 * kPi / 180);
+  const Eigen::AngleAxisf turn(10 * kPi / 180, Eigen::Vector3f(0, 1, 1).normalized());
+  for (Eigen::Vector3f& p : data.positions) {
+    p = turn * p + cylinder.diagonal() * Eigen::Vector3f(0.05f, 0, 0.025f);
+  }
+  cylinder.options.first_iterations = 10;
+  // Measured: 1.1 tolerances off at the set rigidity throughout, 0.06 starting 100 times as
+  // stiff (and 0.05-0.07 against 0.14-1.0 for turns of 4-10 degrees and shifts of 0-5%).
+  cylinder.options.coarse_stiffness = 1;
+  EXPECT_GT(cylinder.WorstDistanceAfterTracking(data), 0.5 * cylinder.options.tolerance);
+  cylinder.options.coarse_stiffness = 100;
+  EXPECT_LT(cylinder.WorstDistanceAfterTracking(data), 0.2 * cylinder.options.tolerance);
 }
 
 /// Encodes one view per frame (a whole cylinder each) with a 600-vertex base, FFV1; the

@@ -54,16 +54,29 @@ class FrameSolver {
     radii_.push_back(2 * options.tolerance);
   }
 
-  /// Gauss-Newton from `transforms`, `iterations` steps per radius, coarse to fine (the first
-  /// call also decides which way the data's normals face, from its start).
-  std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms, int iterations) {
+  /// Gauss-Newton from `transforms`, `iterations` steps per radius, coarse to fine, the
+  /// rigidity `coarse_stiffness` times stiffer at the first radius (the first call also
+  /// decides which way the data's normals face, from its start).
+  std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms, int iterations,
+                                    double coarse_stiffness = 1) {
     if (!facing_known_) {
       facing_ = DataFacing(transforms);
       facing_known_ = true;
     }
-    for (const float radius : radii_) {
+    // Stiff at the coarse radii, where the nearest data may belong to another part, relaxing
+    // geometrically to the set rigidity at the last radius (non-rigid ICP's decreasing
+    // stiffness): a fast part first moves as a whole, then bends.
+    const double coarse = std::max(1.0, coarse_stiffness);
+    for (std::size_t r = 0; r < radii_.size(); ++r) {
+      const double stiffness =
+          radii_.size() > 1 ? std::pow(coarse, double(radii_.size() - 1 - r) /
+                                                   double(radii_.size() - 1))
+                            : 1.0;
       for (int iteration = 0; iteration < iterations; ++iteration) {
-        if (Correspond(transforms, radius) == 0 || !Step(&transforms)) break;
+        if (Correspond(transforms, radii_[r]) == 0 ||
+            !Step(stiffness * rigidity_, &transforms)) {
+          break;
+        }
       }
     }
     return transforms;
@@ -133,9 +146,10 @@ class FrameSolver {
     }
   }
 
-  /// One Gauss-Newton step over the correspondences of the last Correspond(); false when the
-  /// system cannot be solved (the transforms are then left as they were).
-  bool Step(std::vector<RigidTransform>* transforms) {
+  /// One Gauss-Newton step over the correspondences of the last Correspond(), neighbours held
+  /// together with weight `rigidity`; false when the system cannot be solved (the transforms
+  /// are then left as they were).
+  bool Step(double rigidity, std::vector<RigidTransform>* transforms) {
     const auto& rest = base_.mesh.positions;
     const std::size_t nodes = graph_.node_count();
     const int unknowns = static_cast<int>(6 * nodes);
@@ -185,11 +199,11 @@ class FrameSolver {
         blocks[1].leftCols<3>().setZero();
         blocks[1].rightCols<3>() = -Eigen::Matrix3d::Identity();
         Add(std::span(which).first(2), std::span(blocks).first(2),
-            rigidity_ * Eigen::Matrix3d::Identity(), y - centres[k]);
+            rigidity * Eigen::Matrix3d::Identity(), y - centres[k]);
       }
     }
     // Damping: a node neither data nor neighbours decide stays where it is.
-    const double damping = 1e-6 * rigidity_;
+    const double damping = 1e-6 * rigidity;
     for (int i = 0; i < unknowns; ++i) triplets_.emplace_back(i, i, damping);
     Eigen::SparseMatrix<double> system(unknowns, unknowns);
     system.setFromTriplets(triplets_.begin(), triplets_.end());
@@ -283,9 +297,12 @@ std::vector<RigidTransform> DeformationTracker::Track(
   }
   if (frame.points.empty() || nodes == 0) return predicted;
   FrameSolver solver(base_, graph_, options_, frame, previous, options_.rigidity * edge_weight_);
-  // Without a velocity (the key group's second frame), from the last pose with more steps: the
-  // whole frame's motion is left to the solve.
-  if (before.empty()) return solver.Solve(std::move(predicted), options_.first_iterations);
+  // Without a velocity (the key group's second frame), from the last pose with more steps and
+  // stiff at first: the whole frame's motion is left to the solve.
+  if (before.empty()) {
+    return solver.Solve(std::move(predicted), options_.first_iterations,
+                        options_.coarse_stiffness);
+  }
   // From the constant-velocity prediction and from the last pose (a part that stops or turns
   // back is found from where it was): the pose more of the base's vertices find data near
   // (within the last radius) is kept.

@@ -55,6 +55,9 @@ struct DeformationTrackingOptions {
   double rigidity = 0.1;
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double point_weight = 0.1;
+  /// On a frame without a velocity to predict from (Track's `before` empty), the rigidity's
+  /// multiplier at the first (coarsest) radius, falling geometrically to 1 at the last.
+  double coarse_stiffness = 1;
   int iterations = 3;  ///< Gauss-Newton steps per radius
   /// Steps per radius on a frame without a velocity to predict from (Track's `before` empty).
   int first_iterations = 3;

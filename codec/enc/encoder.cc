@@ -106,6 +106,9 @@ Status CheckOptions(const EncoderOptions& o) {
         "tuning.node_spacing and tuning.deform_point_weight must be >= 0 and "
         "tuning.deform_rigidity positive");
   }
+  if (!(o.tuning.deform_coarse_stiffness >= 1 && o.tuning.deform_coarse_stiffness <= 1000)) {
+    return bad("tuning.deform_coarse_stiffness must be in [1, 1000]");
+  }
   if (o.tuning.deform_iterations < 1 || o.tuning.deform_first_iterations < 1) {
     return bad("tuning.deform_iterations and tuning.deform_first_iterations must be at least 1");
   }

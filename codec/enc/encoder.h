@@ -149,6 +149,14 @@ struct EncoderTuning {
   /// key groups and 49/60 frames within 1.25x, 0.1 29 and 57/60, 0.3 33 and 57/60; on a tube
   /// bending 10 degrees a frame, 1 left 24% of the data beyond the tolerance at 60 degrees.
   double deform_rigidity = 0.1;
+  /// On a key group's second frame (no velocity to predict from), the rigidity's multiplier at
+  /// the coarsest correspondence radius, falling geometrically to 1 at the finest
+  /// (DeformationTrackingOptions::coarse_stiffness): a part that moved far first moves as a
+  /// whole, then bends. Measured (60 frames, HEVC q40; bench/DEFORM.md): arm-block 6-ring 26
+  /// key groups at 1, 22 at 30, 20-21 at 100, 21 at 300, samba 6-ring 19 at 1, 20-21 at 100
+  /// (D1 within 0.05 dB), cloth 6-ring 18 at 1, 23 at 100 (+0.12 dB); applied on every frame,
+  /// not just the second, cloth 6-ring took 29.
+  double deform_coarse_stiffness = 100;
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double deform_point_weight = 0.1;
   int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
@@ -194,6 +202,9 @@ inline constexpr double kSegmentationKeyGroupThreshold = 0.02;
 /// and so is held to it more strictly: at 0.02 samba 6-ring (60 frames) made 11 key groups but
 /// 34/60 frames within 1.25x of the baseline's accuracy; at 0.01, 19 and 44/60; at 0.005, 29
 /// and 58/60.
+/// Measured with free space judged at a sample's pixel alone; it is now judged across the
+/// tolerance's footprint too (SeenFreeSpace::Judge's `across_too`), which was not measured
+/// against other thresholds yet.
 inline constexpr double kDeformationKeyGroupThreshold = 0.005;
 
 /// Every setting of the encoder: the few a user chooses, and the internals in `tuning`.
@@ -247,6 +258,8 @@ struct KeyGroupSummary {
   double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view
   double key_frame_unexplained = 0;  ///< share of the key frame's points the base cannot reach
+  /// Share of the key frame's base surface in front of what a camera saw (as cut_seen_through).
+  double key_frame_seen_through = 0;
   double worst_unexplained = 0;      ///< the same, at the worst frame kept in the key group
   /// At the frame that ended the key group (the next key frame), or -1 when the capture (or
   /// max_key_groups) ended it.

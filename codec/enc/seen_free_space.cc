@@ -129,8 +129,8 @@ SeenFreeSpace::SeenFreeSpace(std::span<const TriangleMesh> views,
 }
 
 SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
-                                             const Eigen::Vector3f& normal,
-                                             float tolerance) const {
+                                             const Eigen::Vector3f& normal, float tolerance,
+                                             bool across_too) const {
   Verdict verdict = Verdict::kUnjudged;
   for (const View& view : views_) {
     const Eigen::Vector3f c = view.camera_from_world * point;
@@ -146,9 +146,25 @@ SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
     const float x = std::round(pixel.x()), y = std::round(pixel.y());
     if (!(x >= 0 && x < float(k.width) && y >= 0 && y < float(k.height))) continue;
     const int u = static_cast<int>(x), v = static_cast<int>(y);
-    const float seen = view.nearest_depth[static_cast<std::size_t>(v / pixel_block_) *
-                                              view.block_columns +
-                                          u / pixel_block_];
+    float seen = view.nearest_depth[static_cast<std::size_t>(v / pixel_block_) *
+                                        view.block_columns +
+                                    u / pixel_block_];
+    if (across_too && seen == kNothingSeen) {
+      // Nothing seen at the point's pixel: the nearest depth seen within `tolerance` of it
+      // across the image.
+      constexpr float kMostBlocks = 64;  // a huge tolerance does not scan the whole image
+      const int reach = static_cast<int>(std::ceil(
+          std::min(kMostBlocks, tolerance * float(k.fx) / (c.z() * float(pixel_block_)))));
+      const int block_rows = (k.height + pixel_block_ - 1) / pixel_block_;
+      const int bu = u / pixel_block_, bv = v / pixel_block_;
+      for (int by = std::max(0, bv - reach); by <= std::min(block_rows - 1, bv + reach); ++by) {
+        for (int bx = std::max(0, bu - reach);
+             bx <= std::min(view.block_columns - 1, bu + reach); ++bx) {
+          seen = std::min(seen, view.nearest_depth[static_cast<std::size_t>(by) *
+                                                       view.block_columns + bx]);
+        }
+      }
+    }
     // How far in front of the seen surface, along the normal: the depth gap along the ray
     // (z to ray length: distance / z), projected on the normal.
     const float in_front = (seen - c.z()) * (distance / c.z()) * facing;

@@ -44,8 +44,13 @@ class SeenFreeSpace {
   /// and has the point in front of it and inside its image: seen through when the pixel (or
   /// pixel block) it projects to saw nothing, or saw a surface more than `tolerance` behind
   /// it, measured along the normal (a depth gap seen at an angle is longer).
-  Verdict Judge(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
-                float tolerance) const;
+  /// With `across_too`, a pixel that saw nothing takes the nearest depth seen within
+  /// `tolerance` of the point across the image (as many pixels as `tolerance` spans at the
+  /// point's depth): a surface just past the edge of a view's data, by less than the
+  /// tolerance, is not in free space either (a range sensor's last sample at a silhouette or
+  /// a box's edge is up to a pixel short of the real edge).
+  Verdict Judge(const Eigen::Vector3f& point, const Eigen::Vector3f& normal, float tolerance,
+                bool across_too = false) const;
   /// Whether some camera saw through `point` (Judge gives kSeenThrough).
   bool Contains(const Eigen::Vector3f& point, const Eigen::Vector3f& normal,
                 float tolerance) const {

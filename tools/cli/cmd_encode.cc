@@ -79,6 +79,7 @@ Status WithFlagNames(const Status& status) {
       {"proxy_fraction", "--proxy-fraction"},
       {"deform_iterations", "--deform-iterations"},
       {"deform_first_iterations", "--deform-first-iterations"},
+      {"deform_coarse_stiffness", "--coarse-stiffness"},
       {"max_distance", "--max-distance"},
       {"max_angle_degrees", "--max-angle"},
       {"detail_max_distance", "--detail-distance"},
@@ -145,6 +146,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"registered_share", k.registered_share},
                                {"surface_share", k.surface_share},
                                {"key_frame_unexplained", k.key_frame_unexplained},
+                               {"key_frame_seen_through", k.key_frame_seen_through},
                                {"worst_unexplained", k.worst_unexplained},
                                {"cut_unexplained", k.cut_unexplained},
                                {"cut_seen_through", k.cut_seen_through}});
@@ -431,6 +433,12 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "positions, per vertex a node carries")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--coarse-stiffness", o.tuning.deform_coarse_stiffness,
+                  "With --deform, the rigidity's multiplier at the coarsest correspondence "
+                  "radius, falling geometrically to 1 at the finest: a part that moved far first "
+                  "moves as a whole, then bends")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--point-weight", o.tuning.deform_point_weight,
                   "With --deform, weight of the point-to-point distance beside the "
                   "point-to-plane one")

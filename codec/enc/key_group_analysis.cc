@@ -685,10 +685,10 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     stop = std::min(ctx.end, start + window);
     MESHVID_ASSIGN_OR_RETURN(segmented,
                              SegmentKeyGroup(ctx, topology, start, stop, 1, &proxies, &analysis));
-    // Stray: farther from every data point than a correspondence may reach.
-    // Free space judged at a sample's pixel alone, as kSegmentationKeyGroupThreshold was
-    // measured: judged across the tolerance too, arm-block 3-arc gave 47 key groups against
-    // 50 and 0.05 dB less (bench/DEFORM.md).
+    // Stray: farther from every data point than a correspondence may reach. Free space is
+    // judged at a sample's pixel alone, as kSegmentationKeyGroupThreshold was measured: judged
+    // across the tolerance too, arm-block 3-arc gave 47 key groups against 50 and 0.05 dB less
+    // (bench/DEFORM.md).
     meter.emplace(base, analysis.motion, lattice, ctx.lengths.detail_max_distance,
                   ctx.lengths.max_distance, /*judge_across=*/false);
     key_fit = meter->Measure(tracks[0], proxies[start]);

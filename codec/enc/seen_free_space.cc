@@ -145,10 +145,12 @@ SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
     const Eigen::Vector2f pixel = k.Project(c.cast<double>()).cast<float>();
     const float x = std::round(pixel.x()), y = std::round(pixel.y());
     if (!(x >= 0 && x < float(k.width) && y >= 0 && y < float(k.height))) continue;
-    const int u = static_cast<int>(x), v = static_cast<int>(y);
-    float seen = view.nearest_depth[static_cast<std::size_t>(v / pixel_block_) *
-                                        view.block_columns +
-                                    u / pixel_block_];
+    // The pixel block the point projects to.
+    const int bu = static_cast<int>(x) / pixel_block_, bv = static_cast<int>(y) / pixel_block_;
+    auto depth_at = [&view](int bx, int by) {
+      return view.nearest_depth[static_cast<std::size_t>(by) * view.block_columns + bx];
+    };
+    float seen = depth_at(bu, bv);
     if (across_too && seen == kNothingSeen) {
       // Nothing seen at the point's pixel: the nearest depth seen within `tolerance` of it
       // across the image.
@@ -156,12 +158,10 @@ SeenFreeSpace::Verdict SeenFreeSpace::Judge(const Eigen::Vector3f& point,
       const int reach = static_cast<int>(std::ceil(
           std::min(kMostBlocks, tolerance * float(k.fx) / (c.z() * float(pixel_block_)))));
       const int block_rows = (k.height + pixel_block_ - 1) / pixel_block_;
-      const int bu = u / pixel_block_, bv = v / pixel_block_;
       for (int by = std::max(0, bv - reach); by <= std::min(block_rows - 1, bv + reach); ++by) {
         for (int bx = std::max(0, bu - reach);
              bx <= std::min(view.block_columns - 1, bu + reach); ++bx) {
-          seen = std::min(seen, view.nearest_depth[static_cast<std::size_t>(by) *
-                                                       view.block_columns + bx]);
+          seen = std::min(seen, depth_at(bx, by));
         }
       }
     }

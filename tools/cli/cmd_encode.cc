@@ -434,7 +434,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--coarse-stiffness", o.tuning.deform_coarse_stiffness,
-                  "With --deform, the rigidity's multiplier at the coarsest correspondence "
+                  "With --deform, on a key group's second frame (no velocity to predict its "
+                  "motion from yet), the rigidity's multiplier at the coarsest correspondence "
                   "radius, falling geometrically to 1 at the finest: a part that moved far first "
                   "moves as a whole, then bends")
       ->capture_default_str()

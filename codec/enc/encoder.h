@@ -155,7 +155,9 @@ struct EncoderTuning {
   /// whole, then bends. Measured (60 frames, HEVC q40; bench/DEFORM.md): arm-block 6-ring 26
   /// key groups at 1, 22 at 30, 20-21 at 100, 21 at 300, samba 6-ring 19 at 1, 20-21 at 100
   /// (D1 within 0.05 dB), cloth 6-ring 18 at 1, 23 at 100 (+0.12 dB); applied on every frame,
-  /// not just the second, cloth 6-ring took 29.
+  /// not just the second, cloth 6-ring took 29. Above 1 the second frame is also solved at 1
+  /// throughout, and the solution whose next frame is explained better is kept: cloth 6-ring
+  /// 17 key groups, cloth 3-arc 17 (27 stiff alone), the other pairs within one of stiff alone.
   double deform_coarse_stiffness = 100;
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double deform_point_weight = 0.1;

@@ -493,6 +493,17 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
   return segmented;
 }
 
+/// How much of a frame a tracked pose fails to explain, as the key-group rule sees it: the
+/// share of the data beyond the displacement range plus the share of the surface lying where
+/// a camera saw through.
+double DataMiss(const DataFit& fit) { return fit.unexplained_share + fit.seen_through_share; }
+
+/// A frame's fused surface as the deformation tracker searches it.
+struct PointsWithNormals {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;
+};
+
 /// The motion of a key group as an embedded deformation of its base (tuning.
 /// deformation_tracking): its nodes tracked frame by frame from the key frame at `start` while
 /// the posed base explains each frame's data (to the end of the capture unless `may_cut`).
@@ -519,6 +530,11 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   tracking.iterations = options.tuning.deform_iterations;
   tracking.first_iterations = options.tuning.deform_first_iterations;
   const DeformationTracker tracker(topology, graph, tracking);
+  // The key group's second frame is also solved at the set rigidity throughout (see below).
+  DeformationTrackingOptions supple_tracking = tracking;
+  supple_tracking.coarse_stiffness = 1;
+  std::optional<DeformationTracker> supple_tracker;
+  if (tracking.coarse_stiffness > 1) supple_tracker.emplace(topology, graph, supple_tracking);
 
   MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
                            RegularSubdivision::Create(base, std::min(options.levels, 2)));
@@ -535,31 +551,77 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   if (key_frame.target) {
     ObserveVertices(ctx, base, analysis->motion, *key_frame.target, tracks[0], &observed);
   }
-  for (int t = start + 1; t < ctx.end; ++t) {
-    if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
-    proxies->erase(proxies->begin(), proxies->lower_bound(t));
+  // What frame t is tracked to: the frame fused (closed where no view saw it, as a key
+  // frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
+  std::map<int, PointsWithNormals> fused_frames;
+  auto tracking_data = [&](int t) -> StatusOr<TrackingData> {
     // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
-    std::vector<TriangleMesh> views;
     const bool cached = proxies->count(t) > 0;
-    if (!cached || options.tuning.deform_track_fused) {
-      MESHVID_ASSIGN_OR_RETURN(views, ctx.source.LoadFrame(t));
+    const bool fuse = options.tuning.deform_track_fused && fused_frames.count(t) == 0;
+    if (cached && !fuse) {
+      if (options.tuning.deform_track_fused) {
+        return TrackingData{fused_frames[t].positions, fused_frames[t].normals};
+      }
+      return TrackingData{(*proxies)[t].points, (*proxies)[t].normals};
     }
+    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     if (!cached) {
       MESHVID_ASSIGN_OR_RETURN((*proxies)[t], BuildProxy(ctx, views));
     }
+    if (!fuse) return TrackingData{(*proxies)[t].points, (*proxies)[t].normals};
+    MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused,
+                             FuseFrame(ctx, views, options.tuning.base_fusion_points));
+    PointsWithNormals& kept = fused_frames[t];
+    kept.normals = ComputeVertexNormals(fused);
+    kept.positions = std::move(fused.positions);
+    return TrackingData{kept.positions, kept.normals};
+  };
+  // A frame's pose already tracked while looking ahead from the one before.
+  std::optional<std::vector<RigidTransform>> looked_ahead;
+  for (int t = start + 1; t < ctx.end; ++t) {
+    if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
+    proxies->erase(proxies->begin(), proxies->lower_bound(t));
+    fused_frames.erase(fused_frames.begin(), fused_frames.lower_bound(t));
+    MESHVID_ASSIGN_OR_RETURN(const TrackingData data, tracking_data(t));
     const FrameProxy& proxy = (*proxies)[t];
     const std::span<const RigidTransform> before =
         tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
                            : std::span<const RigidTransform>();
     std::vector<RigidTransform> next;
-    if (options.tuning.deform_track_fused) {
-      // The frame fused (closed where no view saw it, as a key frame's base would be).
-      MESHVID_ASSIGN_OR_RETURN(const TriangleMesh fused,
-                               FuseFrame(ctx, views, options.tuning.base_fusion_points));
-      const std::vector<Eigen::Vector3f> normals = ComputeVertexNormals(fused);
-      next = tracker.Track({fused.positions, normals}, tracks.back(), before);
+    if (looked_ahead) {
+      next = *std::move(looked_ahead);
+      looked_ahead.reset();
     } else {
-      next = tracker.Track({proxy.points, proxy.normals}, tracks.back(), before);
+      next = tracker.Track(data, tracks.back(), before);
+    }
+    if (tracks.size() == 1 && supple_tracker && t + 1 < ctx.end) {
+      // The second frame has no velocity to predict from. Solved stiff at first, a fast part
+      // moves as a whole; at the set rigidity throughout, a waving sheet bends from the start.
+      // Both may explain this frame alike (a sheet that slid along itself still lies on its
+      // data) and part at the next, tracked from each: the start whose next frame leaves less
+      // of the data unexplained and less of the surface seen through is kept, the stiff one on
+      // a tie.
+      std::vector<RigidTransform> supple = supple_tracker->Track(data, tracks.back(), {});
+      MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(t + 1));
+      const FrameProxy& ahead_proxy = (*proxies)[t + 1];
+      auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
+                            std::vector<RigidTransform>* ahead_pose) {
+        if (may_cut && !StillExplains(key_fit, meter.Measure(pose, proxy),
+                                      KeyGroupThreshold(options))) {
+          return std::numeric_limits<double>::infinity();
+        }
+        *ahead_pose = tracker.Track(ahead, pose, tracks.back());
+        return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
+      };
+      std::vector<RigidTransform> stiff_ahead, supple_ahead;
+      const double stiff_miss = miss_ahead(next, &stiff_ahead);
+      const double supple_miss = miss_ahead(supple, &supple_ahead);
+      if (supple_miss < stiff_miss) {
+        next = std::move(supple);
+        looked_ahead = std::move(supple_ahead);
+      } else if (std::isfinite(stiff_miss)) {
+        looked_ahead = std::move(stiff_ahead);
+      }
     }
     if (may_cut) {
       const DataFit fit = meter.Measure(next, proxy);

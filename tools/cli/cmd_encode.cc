@@ -437,7 +437,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "With --deform, on a key group's second frame (no velocity to predict its "
                   "motion from yet), the rigidity's multiplier at the coarsest correspondence "
                   "radius, falling geometrically to 1 at the finest: a part that moved far first "
-                  "moves as a whole, then bends")
+                  "moves as a whole, then bends. The frame is also solved at 1 throughout, and "
+                  "the solution the next frame is tracked better from is kept (1: one solve)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--point-weight", o.tuning.deform_point_weight,

@@ -560,9 +560,10 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     const bool fuse = options.tuning.deform_track_fused && fused_frames.count(t) == 0;
     if (cached && !fuse) {
       if (options.tuning.deform_track_fused) {
-        return TrackingData{fused_frames[t].positions, fused_frames[t].normals};
+        const PointsWithNormals& fused = fused_frames.at(t);
+        return TrackingData{fused.positions, fused.normals};
       }
-      return TrackingData{(*proxies)[t].points, (*proxies)[t].normals};
+      return TrackingData{proxies->at(t).points, proxies->at(t).normals};
     }
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
     if (!cached) {

@@ -555,21 +555,20 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   // frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
   std::map<int, PointsWithNormals> fused_frames;
   auto tracking_data = [&](int t) -> StatusOr<TrackingData> {
-    // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
-    const bool cached = proxies->count(t) > 0;
-    const bool fuse = options.tuning.deform_track_fused && fused_frames.count(t) == 0;
-    if (cached && !fuse) {
-      if (options.tuning.deform_track_fused) {
-        const PointsWithNormals& fused = fused_frames.at(t);
-        return TrackingData{fused.positions, fused.normals};
-      }
+    const bool track_fused = options.tuning.deform_track_fused;
+    if (track_fused && fused_frames.count(t) > 0) {
+      const PointsWithNormals& fused = fused_frames.at(t);
+      return TrackingData{fused.positions, fused.normals};
+    }
+    if (!track_fused && proxies->count(t) > 0) {
       return TrackingData{proxies->at(t).points, proxies->at(t).normals};
     }
+    // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    if (!cached) {
+    if (proxies->count(t) == 0) {
       MESHVID_ASSIGN_OR_RETURN((*proxies)[t], BuildProxy(ctx, views));
     }
-    if (!fuse) return TrackingData{(*proxies)[t].points, (*proxies)[t].normals};
+    if (!track_fused) return TrackingData{proxies->at(t).points, proxies->at(t).normals};
     MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused,
                              FuseFrame(ctx, views, options.tuning.base_fusion_points));
     PointsWithNormals& kept = fused_frames[t];

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "codec/dec/mvid_decoder.h"
@@ -363,6 +364,28 @@ std::vector<double> RmsToFrames(const std::vector<std::uint8_t>& bytes,
   return rms;
 }
 
+/// Encodes the bending cylinder's first `frame_count` frames with the embedded deformation
+/// and expects one key group of them all, every frame decoding well within the
+/// segmentation's tolerance (0.5% of the diagonal) of its data, RMS over the decoded
+/// vertices. Returns the key group's summary (nullopt after a failure).
+std::optional<KeyGroupSummary> ExpectTheBendInOneKeyGroup(int frame_count) {
+  std::vector<TriangleMesh> frames;
+  for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
+  std::vector<std::uint8_t> bytes;
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
+  EXPECT_TRUE(summary.ok()) << summary.status().ToString();
+  if (!summary.ok()) return std::nullopt;
+  EXPECT_EQ(summary->key_groups.size(), 1u);
+  if (summary->key_groups.size() != 1) return std::nullopt;
+  EXPECT_EQ(summary->key_groups[0].frames, frame_count);
+  const std::vector<double> rms = RmsToFrames(bytes, frames);
+  EXPECT_EQ(rms.size(), frames.size());
+  for (std::size_t f = 0; f < rms.size(); ++f) {
+    EXPECT_LT(rms[f], 0.1 * summary->tolerance) << "frame " << f;
+  }
+  return summary->key_groups[0];
+}
+
 // The bending cylinder: two rigid halves and a smooth elbow swinging 10 degrees a
 // frame between +60 and -60 degrees, 60 frames, one closed view a frame. The embedded
 // deformation follows it with one key group; the file stores its nodes (MOTN version 3) and
@@ -372,22 +395,9 @@ std::vector<double> RmsToFrames(const std::vector<std::uint8_t>& bytes,
 // key frame decimated into slivers along the whole tube, which cannot bend at the elbow, and
 // into a proxy with points only at the tube's ends.
 TEST(DeformationTracking, FollowsABendingCylinderOver60FramesInOneKeyGroup) {
-  const int frame_count = 60;
-  std::vector<TriangleMesh> frames;
-  for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
-  std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
-  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
-  ASSERT_EQ(summary->key_groups.size(), 1u);
-  EXPECT_EQ(summary->key_groups[0].frames, frame_count);
-  EXPECT_GT(summary->key_groups[0].segments, 50);
-  // Every frame decodes well within the segmentation's tolerance (0.5% of the diagonal) of
-  // the data, RMS over the decoded vertices.
-  const std::vector<double> rms = RmsToFrames(bytes, frames);
-  ASSERT_EQ(rms.size(), frames.size());
-  for (std::size_t f = 0; f < rms.size(); ++f) {
-    EXPECT_LT(rms[f], 0.1 * summary->tolerance) << "frame " << f;
-  }
+  const std::optional<KeyGroupSummary> key_group = ExpectTheBendInOneKeyGroup(60);
+  ASSERT_TRUE(key_group.has_value());
+  EXPECT_GT(key_group->segments, 50);
 }
 
 // The first 4 frames of the bending cylinder: the key group's second frame is solved stiff
@@ -395,19 +405,7 @@ TEST(DeformationTracking, FollowsABendingCylinderOver60FramesInOneKeyGroup) {
 // within the tolerance. A few seconds, so the sanitizer run covers the key group's look-ahead
 // (scripts/test-sanitized leaves the 60-frame encode above and the command-line encodes out).
 TEST(DeformationTracking, FollowsTheBendsFirstFourFramesInOneKeyGroup) {
-  const int frame_count = 4;
-  std::vector<TriangleMesh> frames;
-  for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
-  std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
-  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
-  ASSERT_EQ(summary->key_groups.size(), 1u);
-  EXPECT_EQ(summary->key_groups[0].frames, frame_count);
-  const std::vector<double> rms = RmsToFrames(bytes, frames);
-  ASSERT_EQ(rms.size(), frames.size());
-  for (std::size_t f = 0; f < rms.size(); ++f) {
-    EXPECT_LT(rms[f], 0.1 * summary->tolerance) << "frame " << f;
-  }
+  EXPECT_TRUE(ExpectTheBendInOneKeyGroup(4).has_value());
 }
 
 // A cylinder bending 20 to 50 degrees at a tight elbow, one closed view a frame: the elbow's

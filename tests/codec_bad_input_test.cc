@@ -223,6 +223,16 @@ TEST(CodecBadInputTest, SideInformationWithHugeCountsIsRejectedBeforeAllocating)
       << status.ToString();
 }
 
+TEST(CodecBadInputTest, SideInformationOfAnUnknownVersionIsUnsupported) {
+  std::vector<uint8_t> side = EncodeGofSideInfo(DisplacementPacking::kLatticeOrder,
+                                                DisplacementRange{0.0f, 1.0f}, {}, {});
+  ASSERT_EQ(side[0], 2);  // what encoders write (spec/mvid-codec.md 2.4)
+  side[0] = 3;
+  const Status status = DecodeGofSideInfo(side, 1, 1, MotionQuantization{}).status();
+  EXPECT_EQ(status.ToString(), "unsupported: group side information version 3 is not supported "
+                               "(this decoder reads versions 1 and 2)");
+}
+
 TEST(CodecBadInputTest, ACutInsideBaseSaysTheBaseIsCut) {
   std::vector<uint8_t> file = GoldenBytes();
   const size_t base = ChunkOffset(file, "BASE");

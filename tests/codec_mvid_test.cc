@@ -450,5 +450,36 @@ TEST(MvidGoldenTest, DeformationNodesFileDecodes) {
   }
 }
 
+// tests/golden/sphere.planes.mvid: GOF side information version 2 (spec/mvid-codec.md 2.4),
+// the transforms' deltas in byte planes; written by this test when MESHVID_WRITE_GOLDEN names
+// a folder, decoded by it always. The golden files above hold side information version 1.
+TEST(MvidGoldenTest, TransformBytePlanesFileDecodes) {
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 2;
+  settings.gof_size = 3;
+  settings.metadata_json = R"({"golden":"sphere transform byte planes"})";
+  auto bytes = testing::WriteAnalyticKeyGroups(ThreeKeyGroups(), 12, settings);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  if (const char* out = std::getenv("MESHVID_WRITE_GOLDEN")) {
+    std::ofstream(std::string(out) + "/sphere.planes.mvid", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  }
+  const std::string golden_path = std::string(MESHVID_GOLDEN_DIR) + "/sphere.planes.mvid";
+  for (const bool golden : {false, true}) {
+    auto reader = golden ? ContainerReader::OpenFile(golden_path)
+                         : ContainerReader::OpenMemory(*bytes);
+    ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+    auto gof = reader->ReadGof(0);
+    ASSERT_TRUE(gof.ok()) << gof.status().ToString();
+    ASSERT_FALSE(gof->transforms.empty());
+    EXPECT_EQ(gof->transforms[0], 2) << "side_info_version, golden " << golden;
+    auto decoder = golden ? MvidDecoder::OpenFile(golden_path) : MvidDecoder::OpenMemory(*bytes);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+    EXPECT_EQ((*decoder)->info().key_groups.size(), 3u);
+    EXPECT_LE(MaxError(**decoder, 2, 12), kStep / 2 * 1.01f + 1e-6f) << "golden " << golden;
+  }
+}
+
 }  // namespace
 }  // namespace meshvid

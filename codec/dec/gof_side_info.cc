@@ -8,7 +8,9 @@
 
 namespace meshvid {
 namespace {
-constexpr std::uint8_t kSideInfoVersion = 1;
+/// The version encoders write: 2, the transforms' deltas in byte planes. Version 1 (each
+/// delta's bytes together) is still read.
+constexpr std::uint8_t kSideInfoVersion = 2;
 }  // namespace
 
 StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
@@ -16,9 +18,9 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
                                         const MotionQuantization& quantization) {
   ByteReader reader(bytes, "group side information");
   MESHVID_ASSIGN_OR_RETURN(const std::uint8_t version, reader.ReadU8("side_info_version"));
-  if (version != kSideInfoVersion) {
+  if (version != 1 && version != kSideInfoVersion) {
     return UnsupportedError("group side information version " + std::to_string(version) +
-                            " is not supported (this decoder reads version 1)");
+                            " is not supported (this decoder reads versions 1 and 2)");
   }
   GofSideInfo info;
   MESHVID_ASSIGN_OR_RETURN(const std::uint8_t packing, reader.ReadU8("displacement_packing"));
@@ -41,7 +43,9 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
   info.video_config.assign(config.begin(), config.end());
   MESHVID_ASSIGN_OR_RETURN(info.transforms,
                            DecodeTransforms(bytes.subspan(reader.position()), frame_count,
-                                            segment_count, quantization));
+                                            segment_count, quantization,
+                                            version == 1 ? TransformByteOrder::kInterleaved
+                                                         : TransformByteOrder::kBytePlanes));
   return info;
 }
 

@@ -2,8 +2,8 @@
 // field: the displacement quantiser of the group, the configuration record of the group's
 // video encoder session (FFV1 needs one; HEVC and AV1 send theirs in-band, so it is empty),
 // then the group's transform track payload.
-//   u8 side_info_version (1) | u8 displacement_packing | f32 displacement_minimum |
-//   f32 displacement_step |
+//   u8 side_info_version (2; 1 is read too) | u8 displacement_packing |
+//   f32 displacement_minimum | f32 displacement_step |
 //   u32 video_config_size | video_config bytes | transforms payload (motion_decoder.h)
 #ifndef MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_
 #define MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_

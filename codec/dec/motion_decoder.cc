@@ -3,7 +3,9 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "codec/common/compression.h"
 #include "format/byte_io.h"
@@ -23,6 +25,16 @@ constexpr std::size_t kTransformBytes = 24;
 std::int32_t AddZigZagDelta(std::int32_t value, std::uint32_t zigzag) {
   const std::uint32_t delta = (zigzag >> 1) ^ (~(zigzag & 1) + 1);
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(value) + delta);
+}
+
+/// The u32 values of byte planes (plane b: byte b of every value) back in little-endian order.
+std::vector<std::uint8_t> JoinBytePlanes(std::span<const std::uint8_t> planes) {
+  const std::size_t values = planes.size() / 4;
+  std::vector<std::uint8_t> joined(planes.size());
+  for (std::size_t b = 0; b < 4; ++b) {
+    for (std::size_t i = 0; i < values; ++i) joined[4 * i + b] = planes[b * values + i];
+  }
+  return joined;
 }
 
 }  // namespace
@@ -134,7 +146,8 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
 
 StatusOr<std::vector<std::vector<RigidTransform>>> DecodeTransforms(
     std::span<const std::uint8_t> payload, std::uint32_t frame_count,
-    std::uint32_t segment_count, const MotionQuantization& quantization) {
+    std::uint32_t segment_count, const MotionQuantization& quantization,
+    TransformByteOrder order) {
   ByteReader reader(payload, "transforms");
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t stored_frames, reader.ReadU32("frame_count"));
   MESHVID_ASSIGN_OR_RETURN(const std::uint32_t stored_segments, reader.ReadU32("segment_count"));
@@ -154,9 +167,10 @@ StatusOr<std::vector<std::vector<RigidTransform>>> DecodeTransforms(
                         "than " + std::to_string(coded.size()) + " coded bytes can hold");
   }
   MESHVID_ASSIGN_OR_RETURN(
-      const std::vector<std::uint8_t> body,
+      std::vector<std::uint8_t> body,
       DecompressBlock(coded, static_cast<std::size_t>(transforms * kTransformBytes),
                       "transforms"));
+  if (order == TransformByteOrder::kBytePlanes) body = JoinBytePlanes(body);
   ByteReader values(body, "transforms");
   std::vector<std::vector<RigidTransform>> frames(frame_count);
   // Each frame is coded as the difference from the previous one (the first from zero).

@@ -44,11 +44,18 @@ StatusOr<DecodedMotion> DecodeMotionModel(std::span<const std::uint8_t> payload,
                                           std::size_t vertex_count,
                                           std::size_t triangle_count = 0);
 
+/// How a transform payload orders the bytes of its zig-zag deltas (spec/mvid-codec.md, GOF
+/// side information): each delta's 4 little-endian bytes together (side_info_version 1), or
+/// byte planes, every delta's lowest byte first, then every second byte and so on (version 2,
+/// what encoders write: zstd finds the planes' runs of zero high bytes).
+enum class TransformByteOrder : std::uint8_t { kInterleaved, kBytePlanes };
+
 /// Decodes one group's transforms: result[frame][segment]. The group must hold
 /// `frame_count` frames of `segment_count` segments (as the container and MOTN say).
 StatusOr<std::vector<std::vector<RigidTransform>>> DecodeTransforms(
     std::span<const std::uint8_t> payload, std::uint32_t frame_count,
-    std::uint32_t segment_count, const MotionQuantization& quantization);
+    std::uint32_t segment_count, const MotionQuantization& quantization,
+    TransformByteOrder order = TransformByteOrder::kBytePlanes);
 
 }  // namespace meshvid
 

@@ -1,5 +1,6 @@
 // Encoding of the motion streams: MOTN (segments, blend weights, quantisation steps) and the
-// per-group transform payloads, quantised, predicted from the previous frame, zstd-coded.
+// per-group transform payloads, quantised, predicted from the previous frame, split into byte
+// planes, zstd-coded.
 #ifndef MESHVID_CODEC_ENC_MOTION_ENCODER_H_
 #define MESHVID_CODEC_ENC_MOTION_ENCODER_H_
 
@@ -29,7 +30,8 @@ struct EncodedTransforms {
 };
 
 /// Codes `frames[frame][segment]`; every frame must have the same number of segments.
-/// The first frame of the group is coded from zero, so every group decodes on its own.
+/// The first frame of the group is coded from zero, so every group decodes on its own. The
+/// deltas are written as byte planes (TransformByteOrder::kBytePlanes, side_info_version 2).
 StatusOr<EncodedTransforms> EncodeTransforms(
     const std::vector<std::vector<RigidTransform>>& frames,
     const MotionQuantization& quantization);

@@ -2,15 +2,18 @@
 // one key group while it does, and --max-key-groups 1 keeping one base.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <memory>
 #include <vector>
 
+#include "codec/dec/motion_decoder.h"
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/data_fit.h"
 #include "codec/enc/encoder.h"
+#include "format/container_reader.h"
 #include "tests/analytic_mvid.h"
 #include "tools/eval/surface_distance.h"
 #include "tests/test_util.h"
@@ -288,6 +291,56 @@ TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {
                                options);
   ASSERT_FALSE(summary.ok());
   EXPECT_NE(summary.status().message().find("key_group_threshold"), std::string::npos);
+}
+
+/// The transform quantisation steps key group 0's MOTN states.
+MotionQuantization StatedSteps(const std::vector<std::uint8_t>& bytes) {
+  auto decoder = MvidDecoder::OpenMemory(bytes);
+  auto reader = ContainerReader::OpenMemory(bytes);
+  EXPECT_TRUE(decoder.ok() && reader.ok());
+  if (!decoder.ok() || !reader.ok()) return {};
+  auto payload = reader->ReadMotion(0);
+  EXPECT_TRUE(payload.ok());
+  if (!payload.ok()) return {};
+  auto motion = DecodeMotionModel(*payload, (*decoder)->info().base_vertices);
+  EXPECT_TRUE(motion.ok()) << motion.status().ToString();
+  return motion.ok() ? motion->quantization : MotionQuantization{};
+}
+
+TEST(TransformSteps, FollowTheSizeByDefaultAndTheOptionWhenSet) {
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(3, 0.01f, /*jump_frame=*/1000);
+  const Encoded by_size = Encode(frames, TestOptions());
+  ASSERT_FALSE(by_size.bytes.empty());
+  // Default: the translation step is 1/8192 of the size (frame 0's diagonal); a rotation step
+  // moves a point at the reach (farthest corner from the origin plus the size) as far.
+  const double scale = by_size.summary.scale;
+  const Eigen::AlignedBox3f box = BoundingBox(frames[0]);
+  double corner = 0;
+  for (int c = 0; c < 8; ++c) {
+    corner = std::max(corner,
+                      double(box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).norm()));
+  }
+  const MotionQuantization derived = StatedSteps(by_size.bytes);
+  EXPECT_FLOAT_EQ(derived.translation_step, float(scale / 8192));
+  EXPECT_FLOAT_EQ(derived.rotation_step, float(scale / 8192 / (corner + scale)));
+
+  EncoderOptions options = TestOptions();
+  options.tuning.transform_step = 0.001;
+  const Encoded set = Encode(frames, options);
+  const MotionQuantization stated = StatedSteps(set.bytes);
+  EXPECT_FLOAT_EQ(stated.translation_step, 0.001f);
+  EXPECT_FLOAT_EQ(stated.rotation_step, float(0.001 / (corner + scale)));
+  // Both decode close to the data (2% of the 1.8 scene diagonal, as the jump test).
+  for (const Encoded* encoded : {&by_size, &set}) {
+    for (const double error : DecodedErrors(encoded->bytes, frames)) EXPECT_LT(error, 0.02);
+  }
+
+  options.tuning.transform_step = -1;
+  auto refused = EncodeCapture(MemoryFrames(frames),
+                               [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("transform_step"), std::string::npos)
+      << refused.status().ToString();
 }
 
 }  // namespace

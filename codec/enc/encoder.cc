@@ -35,6 +35,30 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   return l;
 }
 
+/// Translation step of the transform tracks as a fraction of the size, by default
+/// (EncoderTuning::transform_step).
+constexpr double kTransformStepFraction = 1.0 / 8192;
+
+/// The transform tracks' quantisation steps (EncoderTuning::transform_step) for a capture
+/// whose first frame's views are `views`, of size `scale`.
+MotionQuantization TransformSteps(const EncoderOptions& o, float scale,
+                                  const std::vector<TriangleMesh>& views) {
+  Eigen::AlignedBox3f box;
+  for (const TriangleMesh& view : views) box.extend(BoundingBox(view));
+  double corner = 0;
+  for (int c = 0; c < 8; ++c) {
+    const auto which = static_cast<Eigen::AlignedBox3f::CornerType>(c);
+    corner = std::max(corner, double(box.corner(which).norm()));
+  }
+  const double translation =
+      o.tuning.transform_step > 0 ? o.tuning.transform_step : kTransformStepFraction * scale;
+  MotionQuantization steps;
+  steps.translation_step = static_cast<float>(translation);
+  // Below 1 radian as MOTN requires (a step that coarse would not be useful anyway).
+  steps.rotation_step = static_cast<float>(std::min(0.5, translation / (corner + scale)));
+  return steps;
+}
+
 Status CheckOptions(const EncoderOptions& o) {
   auto bad = [](const std::string& what) { return InvalidArgumentError(what); };
   if (o.levels < 0 || o.levels > RegularSubdivision::kMaxLevels) {
@@ -55,6 +79,9 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
   if (!(o.tuning.base_max_extension >= 0) || !std::isfinite(o.tuning.base_max_extension)) {
     return bad("tuning.base_max_extension must be finite and >= 0");
+  }
+  if (!(o.tuning.transform_step >= 0) || !std::isfinite(o.tuning.transform_step)) {
+    return bad("tuning.transform_step must be finite and >= 0 (0: from the size)");
   }
   if (!(o.tuning.base_voxel_scale >= 0.25 && o.tuning.base_voxel_scale <= 8)) {
     return bad("tuning.base_voxel_scale must be in [0.25, 8]");
@@ -213,12 +240,14 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
 
   // Lengths follow the first frame's size, for every key group alike.
   float scale = 0;
+  MotionQuantization transform_steps;
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, source.LoadFrame(first));
     scale = DiagonalOf(views);
-  }
-  if (!(scale > 0)) {
-    return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
+    if (!(scale > 0)) {
+      return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
+    }
+    transform_steps = TransformSteps(options, scale, views);
   }
   EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();
@@ -260,6 +289,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   settings.frame_rate = source.frame_rate();
   settings.frame_count = static_cast<std::uint32_t>(frames);
   settings.metadata_json = options.metadata_json;
+  settings.motion = transform_steps;
   std::unique_ptr<MvidWriter> writer;
   std::size_t filled = 0, hits = 0, samples = 0;
   ProxyCache proxies;

@@ -55,6 +55,7 @@ Status WithFlagNames(const Status& status) {
       {"base_max_edge", "--base-max-edge"},
       {"proxy_max_edge", "--proxy-max-edge"},
       {"base_position_bits", "--base-bits"},
+      {"transform_step", "--transform-step"},
       {"tolerance", "--tol"},
       {"initial_tolerance_factor", "--tol-start"},
       {"tolerance_shrink", "--tol-shrink"},
@@ -334,6 +335,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--base-bits", o.tuning.base_position_bits,
                   "Draco position quantisation of the base meshes, bits per coordinate "
                   "(8..24; the displacements correct what it moves along the normals)")
+      ->capture_default_str();
+  cmd->add_option("--transform-step", o.tuning.transform_step,
+                  "Quantisation step of the motion's translations, in scene units (0: 1/8192 "
+                  "of the size); rotations are quantised to move no point of the capture more")
       ->capture_default_str();
   cmd->add_option("--tol", o.tuning.tolerance,
                   "Segmentation tolerance UserTol (eq. 6): largest distance between a "

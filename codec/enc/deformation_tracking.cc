@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
@@ -47,6 +50,7 @@ class FrameSolver {
             inverse.Apply(previous[k].Apply(rest[graph.motion.node_vertices[k]])).cast<double>());
       }
     }
+    IndexBlocks();
     // Correspondence radii halving from the search distance to 2 tolerances.
     for (float r = options.max_distance; r > 2.5f * options.tolerance; r *= 0.5f) {
       radii_.push_back(r);
@@ -129,19 +133,56 @@ class FrameSolver {
         std::count_if(match_.begin(), match_.end(), [](std::int32_t m) { return m >= 0; }));
   }
 
-  /// Adds J^T M J and -J^T M r for a residual r with metric M and blocks of J per node.
+  /// The index of the normal equations' 6x6 block of nodes (a, b), added if new.
+  std::int32_t BlockOf(std::uint32_t a, std::uint32_t b,
+                       std::unordered_map<std::uint64_t, std::int32_t>* index) {
+    const std::uint64_t key = (std::uint64_t{a} << 32) | b;
+    const auto next = static_cast<std::int32_t>(block_nodes_.size());
+    const auto [at, added] = index->try_emplace(key, next);
+    if (added) block_nodes_.emplace_back(a, b);
+    return at->second;
+  }
+
+  /// Finds the blocks of the normal equations that can be non-zero, once per frame: the node
+  /// pairs that blend a vertex together and the neighbours held together. Step() then sums
+  /// into them instead of making 36 triplets per pair per vertex, and the sparse pattern is
+  /// the same at every step, so it is ordered once.
+  void IndexBlocks() {
+    std::unordered_map<std::uint64_t, std::int32_t> index;
+    const std::size_t n = base_.mesh.vertex_count();
+    vertex_blocks_.resize(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      const VertexBlend& blend = graph_.motion.blends[v];
+      for (int a = 0; a < blend.count; ++a) {
+        for (int b = 0; b < blend.count; ++b) {
+          vertex_blocks_[v][a * kMaxInfluences + b] =
+              BlockOf(blend.influences[a].segment, blend.influences[b].segment, &index);
+        }
+      }
+    }
+    edge_blocks_.resize(graph_.node_count());
+    for (std::uint32_t j = 0; j < graph_.node_count(); ++j) {
+      for (const std::int32_t k : graph_.adjacent[j]) {
+        const auto other = static_cast<std::uint32_t>(k);
+        edge_blocks_[j].push_back({BlockOf(j, j, &index), BlockOf(j, other, &index),
+                                   BlockOf(other, j, &index), BlockOf(other, other, &index)});
+      }
+    }
+    for (std::uint32_t j = 0; j < graph_.node_count(); ++j) BlockOf(j, j, &index);
+    sums_.resize(block_nodes_.size());
+  }
+
+  /// Adds J^T M J and -J^T M r for a residual r with metric M and blocks of J per node;
+  /// `block_of(a, b)` is the index of the normal equations' block of which[a], which[b].
+  template <typename BlockIndex>
   void Add(std::span<const std::int32_t> which, std::span<const Eigen::Matrix<double, 3, 6>> blocks,
-           const Eigen::Matrix3d& metric, const Eigen::Vector3d& residual) {
+           const BlockIndex& block_of, const Eigen::Matrix3d& metric,
+           const Eigen::Vector3d& residual) {
     for (std::size_t a = 0; a < which.size(); ++a) {
       const Eigen::Matrix<double, 6, 3> jt_m = blocks[a].transpose() * metric;
       rhs_.segment<6>(6 * which[a]) -= jt_m * residual;
       for (std::size_t b = 0; b < which.size(); ++b) {
-        const Eigen::Matrix<double, 6, 6> h = jt_m * blocks[b];
-        for (int r = 0; r < 6; ++r) {
-          for (int c = 0; c < 6; ++c) {
-            triplets_.emplace_back(6 * which[a] + r, 6 * which[b] + c, h(r, c));
-          }
-        }
+        sums_[block_of(a, b)].noalias() += jt_m * blocks[b];
       }
     }
   }
@@ -162,7 +203,7 @@ class FrameSolver {
       centres[j] = rotations[j] * rest[graph_.motion.node_vertices[j]].cast<double>() +
                    (*transforms)[j].translation.cast<double>();
     }
-    triplets_.clear();
+    for (auto& sum : sums_) sum.setZero();
     rhs_ = Eigen::VectorXd::Zero(unknowns);
     std::array<std::int32_t, kMaxInfluences> which{};
     std::array<Eigen::Matrix<double, 3, 6>, kMaxInfluences> blocks;
@@ -183,8 +224,10 @@ class FrameSolver {
       }
       const Eigen::Matrix3d metric =
           nd * nd.transpose() + options_.point_weight * Eigen::Matrix3d::Identity();
-      Add(std::span(which).first(blend.count), std::span(blocks).first(blend.count), metric,
-          posed_[v].cast<double>() - target);
+      const auto& vertex_blocks = vertex_blocks_[v];
+      Add(std::span(which).first(blend.count), std::span(blocks).first(blend.count),
+          [&](std::size_t a, std::size_t b) { return vertex_blocks[a * kMaxInfluences + b]; },
+          metric, posed_[v].cast<double>() - target);
     }
     // Rigidity: node j puts node k where it did in the previous frame, relative to itself.
     for (std::size_t j = 0; j < nodes; ++j) {
@@ -198,19 +241,34 @@ class FrameSolver {
         blocks[0].rightCols<3>() = Eigen::Matrix3d::Identity();
         blocks[1].leftCols<3>().setZero();
         blocks[1].rightCols<3>() = -Eigen::Matrix3d::Identity();
+        const auto& edge_blocks = edge_blocks_[j][e];
         Add(std::span(which).first(2), std::span(blocks).first(2),
+            [&](std::size_t a, std::size_t b) { return edge_blocks[2 * a + b]; },
             rigidity * Eigen::Matrix3d::Identity(), y - centres[k]);
       }
     }
     // Damping: a node neither data nor neighbours decide stays where it is.
     const double damping = 1e-6 * rigidity;
-    for (int i = 0; i < unknowns; ++i) triplets_.emplace_back(i, i, damping);
+    triplets_.clear();
+    for (std::size_t i = 0; i < sums_.size(); ++i) {
+      const auto [a, b] = block_nodes_[i];
+      for (int r = 0; r < 6; ++r) {
+        for (int c = 0; c < 6; ++c) {
+          const double diagonal = a == b && r == c ? damping : 0.0;
+          triplets_.emplace_back(6 * a + r, 6 * b + c, sums_[i](r, c) + diagonal);
+        }
+      }
+    }
     Eigen::SparseMatrix<double> system(unknowns, unknowns);
     system.setFromTriplets(triplets_.begin(), triplets_.end());
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-    if (solver.info() != Eigen::Success) return false;
-    const Eigen::VectorXd step = solver.solve(rhs_);
-    if (solver.info() != Eigen::Success || !step.allFinite()) return false;
+    if (!ordered_) {
+      solver_.analyzePattern(system);
+      ordered_ = true;
+    }
+    solver_.factorize(system);
+    if (solver_.info() != Eigen::Success) return false;
+    const Eigen::VectorXd step = solver_.solve(rhs_);
+    if (solver_.info() != Eigen::Success || !step.allFinite()) return false;
     for (std::size_t j = 0; j < nodes; ++j) {
       const Eigen::Vector3d omega = step.segment<3>(6 * j);
       const Eigen::Vector3d tau = step.segment<3>(6 * j + 3);
@@ -239,8 +297,17 @@ class FrameSolver {
   bool facing_known_ = false;
   std::vector<Eigen::Vector3f> posed_, normals_;
   std::vector<std::int32_t> match_;
+  /// The normal equations' blocks that can be non-zero (IndexBlocks): their nodes (row,
+  /// column) and sums; per vertex, the block of its influences a, b at a * kMaxInfluences + b;
+  /// per node and edge, the blocks (j, j), (j, k), (k, j), (k, k).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> block_nodes_;
+  std::vector<Eigen::Matrix<double, 6, 6>> sums_;
+  std::vector<std::array<std::int32_t, kMaxInfluences * kMaxInfluences>> vertex_blocks_;
+  std::vector<std::vector<std::array<std::int32_t, 4>>> edge_blocks_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::VectorXd rhs_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+  bool ordered_ = false;  ///< solver_ has the pattern's ordering
 };
 
 }  // namespace

@@ -335,12 +335,16 @@ TEST(TransformSteps, FollowTheSizeByDefaultAndTheOptionWhenSet) {
     for (const double error : DecodedErrors(encoded->bytes, frames)) EXPECT_LT(error, 0.02);
   }
 
-  options.tuning.transform_step = -1;
-  auto refused = EncodeCapture(MemoryFrames(frames),
-                               [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
-  ASSERT_FALSE(refused.ok());
-  EXPECT_NE(refused.status().message().find("transform_step"), std::string::npos)
-      << refused.status().ToString();
+  // Negative, or so fine that a few sizes of motion would not fit the quantised values.
+  for (const double refused_step : {-1.0, 1e-7 * scale}) {
+    options.tuning.transform_step = refused_step;
+    auto refused = EncodeCapture(
+        MemoryFrames(frames), [](std::span<const std::uint8_t>) { return Status::Ok(); },
+        options);
+    ASSERT_FALSE(refused.ok()) << refused_step;
+    EXPECT_NE(refused.status().message().find("transform_step"), std::string::npos)
+        << refused.status().ToString();
+  }
 }
 
 }  // namespace

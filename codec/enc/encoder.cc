@@ -39,10 +39,14 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
 /// (EncoderTuning::transform_step).
 constexpr double kTransformStepFraction = 1.0 / 8192;
 
+/// Finest translation step an option may set, as a fraction of the size: the quantised
+/// values of a capture that moves a few sizes stay far inside 32 bits.
+constexpr double kFinestTransformStepFraction = 1e-6;
+
 /// The transform tracks' quantisation steps (EncoderTuning::transform_step) for a capture
 /// whose first frame's views are `views`, of size `scale`.
-MotionQuantization TransformSteps(const EncoderOptions& o, float scale,
-                                  const std::vector<TriangleMesh>& views) {
+StatusOr<MotionQuantization> TransformSteps(const EncoderOptions& o, float scale,
+                                            const std::vector<TriangleMesh>& views) {
   Eigen::AlignedBox3f box;
   for (const TriangleMesh& view : views) box.extend(BoundingBox(view));
   double corner = 0;
@@ -52,6 +56,11 @@ MotionQuantization TransformSteps(const EncoderOptions& o, float scale,
   }
   const double translation =
       o.tuning.transform_step > 0 ? o.tuning.transform_step : kTransformStepFraction * scale;
+  if (translation < kFinestTransformStepFraction * scale) {
+    return InvalidArgumentError("tuning.transform_step " + std::to_string(translation) +
+                                " is finer than 1e-6 of the capture's size (" +
+                                std::to_string(scale) + ")");
+  }
   MotionQuantization steps;
   steps.translation_step = static_cast<float>(translation);
   // Below 1 radian as MOTN requires (a step that coarse would not be useful anyway).
@@ -247,7 +256,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     if (!(scale > 0)) {
       return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
     }
-    transform_steps = TransformSteps(options, scale, views);
+    MESHVID_ASSIGN_OR_RETURN(transform_steps, TransformSteps(options, scale, views));
   }
   EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();

@@ -206,12 +206,8 @@ std::vector<std::uint8_t> AsInterleaved(const std::vector<std::uint8_t>& payload
   const std::size_t values = transforms * 6;
   auto planes = DecompressBlock(std::span(payload).subspan(8), values * 4, "transforms");
   EXPECT_TRUE(planes.ok());
-  std::vector<std::uint8_t> joined(values * 4);
-  for (std::size_t b = 0; b < 4; ++b) {
-    for (std::size_t i = 0; i < values; ++i) joined[4 * i + b] = (*planes)[b * values + i];
-  }
   std::vector<std::uint8_t> out(payload.begin(), payload.begin() + 8);  // the two counts
-  const std::vector<std::uint8_t> compressed = CompressBlock(joined);
+  const std::vector<std::uint8_t> compressed = CompressBlock(JoinBytePlanes(*planes));
   out.insert(out.end(), compressed.begin(), compressed.end());
   return out;
 }

@@ -21,6 +21,14 @@ inline constexpr std::uint64_t kMaxZstdExpansion = 32768;
 /// corrupt, and is rejected before anything is allocated for it.
 bool ZstdCanExpandTo(std::size_t compressed_size, std::uint64_t size);
 
+/// Little-endian u32 values (`values_bytes`, 4 bytes each) as byte planes: every value's
+/// lowest byte, then every second byte, and so on. zstd finds longer runs in the planes of
+/// small values (their zero high bytes together): the transform payloads' byte order.
+std::vector<std::uint8_t> SplitBytePlanes(std::span<const std::uint8_t> values_bytes);
+
+/// The inverse of SplitBytePlanes: byte planes back to little-endian u32 values.
+std::vector<std::uint8_t> JoinBytePlanes(std::span<const std::uint8_t> planes);
+
 /// Compresses `raw` as one zstd frame at `level` (1..19).
 std::vector<std::uint8_t> CompressBlock(std::span<const std::uint8_t> raw, int level = 19);
 

@@ -27,16 +27,6 @@ std::int32_t AddZigZagDelta(std::int32_t value, std::uint32_t zigzag) {
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(value) + delta);
 }
 
-/// The u32 values of byte planes (plane b: byte b of every value) back in little-endian order.
-std::vector<std::uint8_t> JoinBytePlanes(std::span<const std::uint8_t> planes) {
-  const std::size_t values = planes.size() / 4;
-  std::vector<std::uint8_t> joined(planes.size());
-  for (std::size_t b = 0; b < 4; ++b) {
-    for (std::size_t i = 0; i < values; ++i) joined[4 * i + b] = planes[b * values + i];
-  }
-  return joined;
-}
-
 }  // namespace
 
 RigidTransform DequantizeTransform(const QuantizedTransform& q,

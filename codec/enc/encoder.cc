@@ -44,11 +44,9 @@ constexpr double kTransformStepFraction = 1.0 / 8192;
 constexpr double kFinestTransformStepFraction = 1e-6;
 
 /// The transform tracks' quantisation steps (EncoderTuning::transform_step) for a capture
-/// whose first frame's views are `views`, of size `scale`.
+/// whose first frame's views span `box`, of size `scale` (the box's diagonal).
 StatusOr<MotionQuantization> TransformSteps(const EncoderOptions& o, float scale,
-                                            const std::vector<TriangleMesh>& views) {
-  Eigen::AlignedBox3f box;
-  for (const TriangleMesh& view : views) box.extend(BoundingBox(view));
+                                            const Eigen::AlignedBox3f& box) {
   double corner = 0;
   for (int c = 0; c < 8; ++c) {
     const auto which = static_cast<Eigen::AlignedBox3f::CornerType>(c);
@@ -252,11 +250,12 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   MotionQuantization transform_steps;
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, source.LoadFrame(first));
-    scale = DiagonalOf(views);
+    const Eigen::AlignedBox3f box = BoxOf(views);
+    scale = box.isEmpty() ? 0.0f : box.diagonal().norm();
     if (!(scale > 0)) {
       return InvalidArgumentError("frame " + std::to_string(first) + " holds no surface");
     }
-    MESHVID_ASSIGN_OR_RETURN(transform_steps, TransformSteps(options, scale, views));
+    MESHVID_ASSIGN_OR_RETURN(transform_steps, TransformSteps(options, scale, box));
   }
   EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();

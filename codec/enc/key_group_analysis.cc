@@ -62,11 +62,12 @@ StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<Tria
   return result;
 }
 
-float DiagonalOf(const std::vector<TriangleMesh>& views) {
+Eigen::AlignedBox3f BoxOf(const std::vector<TriangleMesh>& views) {
   Eigen::AlignedBox3f box;
   for (const TriangleMesh& view : views) box.extend(BoundingBox(view));
-  return box.isEmpty() ? 0.0f : box.diagonal().norm();
+  return box;
 }
+
 
 namespace {
 

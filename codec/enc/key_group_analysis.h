@@ -56,8 +56,8 @@ inline constexpr int kFreeSpacePixelBlock = 2;
 /// the next one's first).
 using ProxyCache = std::map<int, FrameProxy>;
 
-/// The bounding-box diagonal of a frame's views (0 when they are empty).
-float DiagonalOf(const std::vector<TriangleMesh>& views);
+/// The bounding box of every view of a frame together (empty when they are).
+Eigen::AlignedBox3f BoxOf(const std::vector<TriangleMesh>& views);
 
 /// What every stage of one encode shares.
 struct EncodeContext {

@@ -20,17 +20,6 @@ std::uint32_t ZigZagDelta(std::int32_t from, std::int32_t to) {
   return (static_cast<std::uint32_t>(delta) << 1) ^ static_cast<std::uint32_t>(delta >> 31);
 }
 
-/// Little-endian u32 values as byte planes: every value's lowest byte, then every second
-/// byte, and so on (TransformByteOrder::kBytePlanes).
-std::vector<std::uint8_t> SplitBytePlanes(std::span<const std::uint8_t> values_bytes) {
-  const std::size_t values = values_bytes.size() / 4;
-  std::vector<std::uint8_t> planes(values_bytes.size());
-  for (std::size_t i = 0; i < values; ++i) {
-    for (std::size_t b = 0; b < 4; ++b) planes[b * values + i] = values_bytes[4 * i + b];
-  }
-  return planes;
-}
-
 std::int32_t QuantizeValue(float value, float step) {
   const double q = std::nearbyint(static_cast<double>(value) / step);
   constexpr double kLimit = std::numeric_limits<std::int32_t>::max();

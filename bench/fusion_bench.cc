@@ -1,6 +1,7 @@
 // Speed of the view fusion (FuseRangeMeshes) on samba seen by 3 range cameras of 640x480 on
 // the default arc (turned to face the dancer), the fusion of the encoder's base meshes and of
-// meshvid bench's baseline. Frames are simulated once, before timing.
+// meshvid bench's baseline, and of the decimation that makes a base of the fused surface.
+// Frames are simulated once, before timing.
 //   build/bench/fusion_bench [--benchmark_filter=...]
 // Needs the shared data (MESHVID_SHARED_DATA or ../shared/data); skips otherwise.
 #include <benchmark/benchmark.h>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "bench/samba_frames.h"
+#include "codec/enc/decimation.h"
 #include "codec/enc/surface_fusion.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/sim/range_sensor.h"
@@ -30,6 +32,7 @@ double ProcessCpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_P
 struct SambaViews {
   std::string error;
   std::vector<std::vector<TriangleMesh>> frames;
+  float size = 0;  ///< the ground truth's bounding-box diagonal over the frames
 
   SambaViews() {
     SambaGroundTruth truth = LoadSambaGroundTruth(kFrames);
@@ -37,6 +40,7 @@ struct SambaViews {
       error = std::move(truth.error);
       return;
     }
+    size = truth.bounds.diagonal().norm();
     const Eigen::AlignedBox3d box(truth.bounds.min().cast<double>(),
                                   truth.bounds.max().cast<double>());
     RigOptions rig;
@@ -62,9 +66,15 @@ struct SambaViews {
   }
 };
 
+/// The views, simulated on first use and shared by the benchmarks.
+const SambaViews* Samba() {
+  static const SambaViews* samba = new SambaViews;
+  return samba;
+}
+
 /// One frame's 3 views fused into one surface, at the default settings.
 void BM_SambaFuseThreeViews(benchmark::State& state) {
-  static const SambaViews* samba = new SambaViews;
+  const SambaViews* samba = Samba();
   if (!samba->error.empty()) {
     state.SkipWithError(samba->error.c_str());
     return;
@@ -88,6 +98,58 @@ void BM_SambaFuseThreeViews(benchmark::State& state) {
 }
 
 BENCHMARK(BM_SambaFuseThreeViews)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// A key frame's base: one frame's 3 views fused from 40,000 points, as the encoder fuses a
+/// base (tuning.base_fusion_points), decimated with the encoder's base bounds (2,000 vertices,
+/// 1% of the size from every fused vertex, 30 degrees of normal deviation, edges of at most
+/// 3% of the size as with --deform). Fused once per frame before timing; every iteration
+/// decimates each of the frames once.
+void BM_SambaDecimateBase(benchmark::State& state) {
+  const SambaViews* samba = Samba();
+  if (!samba->error.empty()) {
+    state.SkipWithError(samba->error.c_str());
+    return;
+  }
+  static const std::vector<TriangleMesh>* fused = [samba] {
+    auto* meshes = new std::vector<TriangleMesh>;
+    SurfaceFusionOptions options;
+    options.max_points = 40000;
+    for (const auto& views : samba->frames) {
+      auto mesh = FuseRangeMeshes(views, options);
+      if (mesh.ok()) meshes->push_back(std::move(*mesh));
+    }
+    return meshes;
+  }();
+  if (fused->size() != samba->frames.size()) {
+    state.SkipWithError("a frame failed to fuse");
+    return;
+  }
+  DecimationOptions options;
+  options.target_vertices = 2000;
+  options.max_error = 0.01 * samba->size;
+  options.max_normal_deviation_degrees = 30;
+  options.max_edge_length = 0.03 * samba->size;
+  long long input = 0, output = 0;
+  const double cpu_start = ProcessCpuSeconds();
+  for (auto _ : state) {
+    for (const TriangleMesh& mesh : *fused) {  // every frame once per iteration
+      auto base = DecimateMesh(mesh, options);
+      if (!base.ok()) {
+        state.SkipWithError(base.status().ToString().c_str());
+        return;
+      }
+      input += static_cast<long long>(mesh.vertex_count());
+      output += static_cast<long long>(base->vertex_count());
+    }
+  }
+  const double bases = static_cast<double>(state.iterations() * fused->size());
+  state.counters["bases/s"] = benchmark::Counter(bases, benchmark::Counter::kIsRate);
+  state.counters["cpu_ms/base"] = 1000.0 * (ProcessCpuSeconds() - cpu_start) / bases;
+  state.counters["input_vertices"] = static_cast<double>(input) / bases;
+  state.counters["base_vertices"] = static_cast<double>(output) / bases;
+}
+
+BENCHMARK(BM_SambaDecimateBase)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace meshvid

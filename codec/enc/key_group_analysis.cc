@@ -68,7 +68,6 @@ Eigen::AlignedBox3f BoxOf(const std::vector<TriangleMesh>& views) {
   return box;
 }
 
-
 namespace {
 
 /// The key-group threshold in force (EncoderOptions::key_group_threshold; -1: by tracker).

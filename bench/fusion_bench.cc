@@ -14,6 +14,7 @@
 
 #include "bench/samba_frames.h"
 #include "codec/enc/decimation.h"
+#include "codec/enc/encoder.h"
 #include "codec/enc/surface_fusion.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/sim/range_sensor.h"
@@ -99,10 +100,10 @@ void BM_SambaFuseThreeViews(benchmark::State& state) {
 
 BENCHMARK(BM_SambaFuseThreeViews)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-/// A key frame's base: one frame's 3 views fused from 40,000 points, as the encoder fuses a
-/// base (tuning.base_fusion_points), decimated with the encoder's base bounds (2,000 vertices,
-/// 1% of the size from every fused vertex, 30 degrees of normal deviation, edges of at most
-/// 3% of the size as with --deform). Fused once per frame before timing; every iteration
+/// A key frame's base: one frame's 3 views fused from tuning.base_fusion_points points, as the
+/// encoder fuses a base, decimated with the encoder's default base bounds (base_vertices, 1%
+/// of the size from every fused vertex, the normal deviation, edges of at most 3% of the size
+/// as with --deform). Fused once per frame before timing; every iteration
 /// decimates each of the frames once.
 void BM_SambaDecimateBase(benchmark::State& state) {
   const SambaViews* samba = Samba();
@@ -110,10 +111,11 @@ void BM_SambaDecimateBase(benchmark::State& state) {
     state.SkipWithError(samba->error.c_str());
     return;
   }
-  static const std::vector<TriangleMesh>* fused = [samba] {
+  const EncoderOptions defaults;
+  static const std::vector<TriangleMesh>* fused = [samba, &defaults] {
     auto* meshes = new std::vector<TriangleMesh>;
     SurfaceFusionOptions options;
-    options.max_points = 40000;
+    options.max_points = defaults.tuning.base_fusion_points;
     for (const auto& views : samba->frames) {
       auto mesh = FuseRangeMeshes(views, options);
       if (mesh.ok()) meshes->push_back(std::move(*mesh));
@@ -125,9 +127,10 @@ void BM_SambaDecimateBase(benchmark::State& state) {
     return;
   }
   DecimationOptions options;
-  options.target_vertices = 2000;
+  options.target_vertices = defaults.base_vertices;
+  // The fractions of the size the encoder derives the two lengths from (with --deform).
   options.max_error = 0.01 * samba->size;
-  options.max_normal_deviation_degrees = 30;
+  options.max_normal_deviation_degrees = defaults.tuning.base_max_normal_deviation_degrees;
   options.max_edge_length = 0.03 * samba->size;
   long long input = 0, output = 0;
   const double cpu_start = ProcessCpuSeconds();

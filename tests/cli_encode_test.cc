@@ -146,25 +146,56 @@ TEST_F(ArmBlockEncode, DecodedSequenceCoversAtLeastTheInputAndStaysNearTheTruth)
   EXPECT_LT(mvid["accuracy_rms"].get<double>(), 0.05) << mvid;
 }
 
-TEST_F(ArmBlockEncode, TheBlockLandsInOneSegment) {
-  auto decoder = MvidDecoder::OpenFile(dir_->File("arm.mvid"));
-  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+/// Per part of the arm-block scene (`parts`, per ground-truth vertex), the share of the base vertices of `mvid`'s longest key
+/// group (the first of the longest) near that part whose strongest segment lies in the
+/// part's most common rigid group: segments whose decoded transforms are equal in every frame
+/// of the key group (one segment each, unless the encoder joined nodes into rigid groups).
+std::map<std::string, double> PartSharesInOneGroup(const std::string& mvid,
+                                                   const std::vector<std::string>& parts) {
+  std::map<std::string, double> shares;
+  auto decoder = MvidDecoder::OpenFile(mvid);
+  EXPECT_TRUE(decoder.ok()) << decoder.status().ToString();
+  if (!decoder.ok()) return shares;
+  MvidKeyGroupSpan group;
+  for (const MvidKeyGroupSpan& span : (*decoder)->info().key_groups) {
+    if (span.frame_count > group.frame_count) group = span;
+  }
   auto truth = OpenGroundTruth("scene:arm-block");
-  ASSERT_TRUE(truth.ok());
-  auto frame0 = (*truth)->Frame(0);
-  ASSERT_TRUE(frame0.ok());
-  const std::vector<std::string> parts = ArmBlockVertexParts();
-  const TriangleMesh& base = (*decoder)->base_mesh();
+  EXPECT_TRUE(truth.ok());
+  if (!truth.ok()) return shares;
+  auto key_frame = (*truth)->Frame(group.first_frame);
+  EXPECT_TRUE(key_frame.ok());
+  if (!key_frame.ok()) return shares;
+  // Each segment's transforms through the key group, as a key for grouping.
+  std::vector<std::vector<float>> tracks;
+  for (std::uint32_t f = 0; f < group.frame_count; ++f) {
+    auto transforms = (*decoder)->DecodeTransforms(group.first_frame + f);
+    EXPECT_TRUE(transforms.ok());
+    if (!transforms.ok()) return shares;
+    tracks.resize(transforms->size());
+    for (std::size_t s = 0; s < tracks.size(); ++s) {
+      const RigidTransform& t = (*transforms)[s];
+      tracks[s].insert(tracks[s].end(), {t.rotation.w(), t.rotation.x(), t.rotation.y(),
+                                         t.rotation.z(), t.translation.x(), t.translation.y(),
+                                         t.translation.z()});
+    }
+  }
   const MotionModel& motion = (*decoder)->motion();
-  // Each base vertex takes the part of the nearest ground-truth vertex and votes for its
-  // strongest segment.
-  std::map<std::string, std::map<std::uint32_t, int>> votes;
+  std::map<std::vector<float>, int> group_ids;
+  std::vector<int> group_of_segment(tracks.size());
+  for (std::size_t s = 0; s < tracks.size(); ++s) {
+    group_of_segment[s] = group_ids.try_emplace(tracks[s], int(group_ids.size())).first->second;
+  }
+  // Each base vertex takes the part of the nearest ground-truth vertex and votes for the group
+  // of its strongest segment.
+  const TriangleMesh& base = (*decoder)->base_mesh();
+  std::map<std::string, std::map<int, int>> votes;
   std::map<std::string, int> totals;
   for (std::size_t v = 0; v < base.vertex_count(); ++v) {
     std::size_t nearest = 0;
     float best = 1e30f;
-    for (std::size_t g = 0; g < frame0->vertex_count(); ++g) {
-      const float d = (frame0->positions[g] - base.positions[v]).squaredNorm();
+    for (std::size_t g = 0; g < key_frame->vertex_count(); ++g) {
+      const float d = (key_frame->positions[g] - base.positions[v]).squaredNorm();
       if (d < best) best = d, nearest = g;
     }
     if (best > 0.01f * 0.01f) continue;  // base vertices away from the object (fused hull)
@@ -172,26 +203,60 @@ TEST_F(ArmBlockEncode, TheBlockLandsInOneSegment) {
     const auto strongest = std::max_element(
         blend.influences.begin(), blend.influences.begin() + blend.count,
         [](const BlendInfluence& a, const BlendInfluence& b) { return a.weight < b.weight; });
-    ++votes[parts[nearest]][strongest->segment];
+    ++votes[parts[nearest]][group_of_segment[strongest->segment]];
     ++totals[parts[nearest]];
   }
-  ASSERT_GT(totals["block"], 50);
-  std::map<std::string, double> shares;
+  EXPECT_GT(totals["block"], 50);
   for (const auto& [part, part_votes] : votes) {
     int top = 0;
-    for (const auto& [segment, count] : part_votes) top = std::max(top, count);
+    for (const auto& [id, count] : part_votes) top = std::max(top, count);
     shares[part] = double(top) / totals[part];
-    std::printf("%s: %.1f%% of %d base vertices in one segment\n", part.c_str(),
-                100 * shares[part], totals[part]);
+    std::printf("%s: %.1f%% of %d base vertices in one group (%zu groups of %zu segments; key "
+                "group of %u frames)\n",
+                part.c_str(), 100 * shares[part], totals[part], group_ids.size(), tracks.size(),
+                group.frame_count);
   }
+  return shares;
+}
+
+TEST_F(ArmBlockEncode, TheBlockLandsInOneSegment) {
+  std::map<std::string, double> shares =
+      PartSharesInOneGroup(dir_->File("arm.mvid"), ArmBlockVertexParts());
   // Regression guards at the measured levels. With the distance-volume fusion's base (open
   // where no view looks) the arm holds together far better (80.7%, was 45.2% on the closed
   // Poisson base) and the block a little worse (88.6%, was 95.9%). The base ended where the
   // cameras saw through it (0.8% of frame 0's fused triangles removed, --free-space) gives
   // block 99.3%, arm 63.9% (80.1% and 100% with --free-space false): the segmentation of the
   // fast arm moves with small changes of the base. Issue 4's goal of 95% for both is not met.
+  // Counted since on the longest key group (3 frames at the time of writing; the first has
+  // one frame now, in which every segment moves alike): block 92.1%, arm 84.3%.
   EXPECT_GE(shares["block"], 0.85);
   EXPECT_GE(shares["arm"], 0.6);
+}
+
+TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
+  const std::string mvid = dir_->File("arm-deform.mvid");
+  const testing::CliRun enc = testing::RunMeshvid(
+      "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
+          "' --deform 1 --rigid-groups 1 -q --summary-json '" + dir_->File("deform.json") + "'",
+      *dir_);
+  ASSERT_EQ(enc.exit_code, 0) << enc.err;
+  const nlohmann::json summary =
+      nlohmann::json::parse(testing::ReadFile(dir_->File("deform.json")));
+  for (const auto& group : summary["key_groups"]) {
+    EXPECT_GE(group["rigid_groups"].get<int>(), 1);
+    EXPECT_LT(group["rigid_groups"].get<int>(), group["segments"].get<int>());
+  }
+  // The arm bends at the elbow and turns at the wrist: its rigid pieces are the upper arm,
+  // the forearm and the hand.
+  std::map<std::string, double> shares = PartSharesInOneGroup(mvid, ArmBlockVertexPieces());
+  EXPECT_GE(shares["block"], 0.95);
+  EXPECT_GE(shares["upper_arm"], 0.95);
+  EXPECT_GE(shares["forearm"], 0.95);
+  EXPECT_GE(shares["hand"], 0.95);
+  // The whole arm, as issue 4 counted it, for the record (measured 81.4%).
+  shares = PartSharesInOneGroup(mvid, ArmBlockVertexParts());
+  EXPECT_GE(shares["arm"], 0.5);
 }
 
 }  // namespace

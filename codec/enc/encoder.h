@@ -170,6 +170,16 @@ struct EncoderTuning {
   double deform_coarse_stiffness = 100;
   /// Weight of the point-to-point distance beside the point-to-plane one.
   double deform_point_weight = 0.1;
+  /// With deformation_tracking, neighbouring nodes are joined into rigid groups while one
+  /// rigid transform per frame stays within this many tolerances of each node's own (RMS over
+  /// the vertices it moves, in every frame of the key group), and carry the group's transform
+  /// (rigid_node_groups.h; 0: each node keeps its own). Measured (60 frames, HEVC q40;
+  /// bench/DEFORM.md): at 1 scene:arm-block's block, upper arm, forearm and hand are each
+  /// 96-100% in one group (16 frames, 3-view arc) and arm-block 6-ring gains 0.08 dB for 7%
+  /// fewer bytes, but samba 6-ring's accuracy is above 1.25x on 8 of 60 frames; at 0.5 no
+  /// frame is on samba 6-ring or cloth 3-arc (2-16% fewer bytes, the same D1). Off until 0.5
+  /// is measured on every pair.
+  double deform_rigid_group_factor = 0;
   int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
   /// Steps per radius on a key group's second frame, which has no velocity to predict from
   /// (its start is the key frame's pose): arm-block's parts move up to 5.1 cm a frame, and 3
@@ -267,6 +277,9 @@ struct KeyGroupSummary {
   std::size_t base_vertices = 0;
   int segments = 0;
   int patches = 0;
+  /// With deformation_tracking: the groups of nodes moving together as one rigid body
+  /// (EncoderTuning::deform_rigid_group_factor; the segments when nodes are not joined).
+  int rigid_groups = 0;
   double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view
   double key_frame_unexplained = 0;  ///< share of the key frame's points the base cannot reach

@@ -19,6 +19,7 @@
 #include "codec/enc/deformation_tracking.h"
 #include "codec/enc/motion_blend.h"
 #include "codec/enc/patch_tracking.h"
+#include "codec/enc/rigid_node_groups.h"
 #include "codec/enc/surface_fusion.h"
 
 namespace meshvid {
@@ -639,6 +640,14 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   }
   summary.frames = static_cast<int>(tracks.size());
   proxies->erase(proxies->begin(), proxies->lower_bound(start + summary.frames));
+  summary.rigid_groups = nodes;
+  if (options.tuning.deform_rigid_group_factor > 0) {
+    const RigidNodeGroups groups = FindRigidNodeGroups(
+        base.positions, graph.motion, graph.adjacent, tracks,
+        static_cast<float>(options.tuning.deform_rigid_group_factor * ctx.seg.tolerance));
+    ApplyRigidNodeGroups(groups, base.positions, graph.motion, &tracks);
+    summary.rigid_groups = groups.group_count;
+  }
   MarkSurface(ctx, base, observed, &analysis->motion, &summary);
   return Status::Ok();
 }

@@ -144,6 +144,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"base_vertices", k.base_vertices},
                                {"segments", k.segments},
                                {"patches", k.patches},
+                               {"rigid_groups", k.rigid_groups},
                                {"registered_share", k.registered_share},
                                {"surface_share", k.surface_share},
                                {"key_frame_unexplained", k.key_frame_unexplained},
@@ -449,6 +450,12 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--point-weight", o.tuning.deform_point_weight,
                   "With --deform, weight of the point-to-point distance beside the "
                   "point-to-plane one")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rigid-groups", o.tuning.deform_rigid_group_factor,
+                  "With --deform, join neighbouring nodes that move as one rigid body through "
+                  "a key group (one rigid transform poses each node's vertices within this "
+                  "many tolerances, RMS, in every frame) and give them that transform (0: off)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--deform-fused", o.tuning.deform_track_fused,

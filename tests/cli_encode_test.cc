@@ -49,6 +49,11 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   EXPECT_NE(run.err.find("--base-voxel-scale must be in [0.25, 8]"), std::string::npos)
       << run.err;
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --deform 1 --rigid-groups -1 -q",
+                            dir);
+  EXPECT_NE(run.exit_code, 0);  // refused while parsing, as every range-checked flag
+  EXPECT_NE(run.err.find("--rigid-groups"), std::string::npos) << run.err;
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
                                 "' --codec mpeg2 -q",
                             dir);
   EXPECT_EQ(run.exit_code, 1);
@@ -146,9 +151,9 @@ TEST_F(ArmBlockEncode, DecodedSequenceCoversAtLeastTheInputAndStaysNearTheTruth)
   EXPECT_LT(mvid["accuracy_rms"].get<double>(), 0.05) << mvid;
 }
 
-/// Per part of the arm-block scene (`parts`, per ground-truth vertex), the share of the base vertices of `mvid`'s longest key
-/// group (the first of the longest) near that part whose strongest segment lies in the
-/// part's most common rigid group: segments whose decoded transforms are equal in every frame
+/// Per part of the arm-block scene (`parts`, per ground-truth vertex), the share of the base
+/// vertices of `mvid`'s longest key group (the first of the longest) near that part whose
+/// strongest segment lies in the part's most common rigid group: segments whose decoded transforms are equal in every frame
 /// of the key group (one segment each, unless the encoder joined nodes into rigid groups).
 std::map<std::string, double> PartSharesInOneGroup(const std::string& mvid,
                                                    const std::vector<std::string>& parts) {

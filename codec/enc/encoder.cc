@@ -140,6 +140,9 @@ Status CheckOptions(const EncoderOptions& o) {
         "tuning.node_spacing and tuning.deform_point_weight must be >= 0 and "
         "tuning.deform_rigidity positive");
   }
+  if (!(o.tuning.deform_rigid_group_factor >= 0)) {
+    return bad("tuning.deform_rigid_group_factor must be >= 0");
+  }
   if (!(o.tuning.deform_coarse_stiffness >= 1 && o.tuning.deform_coarse_stiffness <= 1000)) {
     return bad("tuning.deform_coarse_stiffness must be in [1, 1000]");
   }

@@ -78,6 +78,7 @@ Status WithFlagNames(const Status& status) {
       {"reacquire_min_vertices", "--reacquire-min-vertices"},
       {"reacquire_max_distance", "--reacquire-distance"},
       {"proxy_fraction", "--proxy-fraction"},
+      {"deform_rigid_group_factor", "--rigid-groups"},
       {"deform_iterations", "--deform-iterations"},
       {"deform_first_iterations", "--deform-first-iterations"},
       {"deform_coarse_stiffness", "--coarse-stiffness"},

@@ -116,8 +116,9 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
     for (const std::uint32_t k : neighbours[j]) neighbours[k].insert(j);  // symmetric
   }
   const double limit = double(tolerance);
-  // The worst RMS over the nodes of a and b of one transform per frame fitted to both: above
-  // the limit as soon as one node is.
+  // Over the nodes of a and b and the frames, the worst RMS distance between one transform
+  // per frame fitted to both and each node's own, on the vertices the node moves (once above
+  // the limit, no more is measured).
   auto cost = [&](std::uint32_t a, std::uint32_t b) {
     double worst = 0;
     for (std::size_t f = 0; f < frames && worst <= limit; ++f) {
@@ -147,7 +148,7 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
   }
   std::vector<char> alive(nodes, 1);
   while (!queue.empty()) {
-    const auto [c, a, b, version_a, version_b] = queue.top();
+    const auto [cost_ab, a, b, version_a, version_b] = queue.top();
     queue.pop();
     if (!alive[a] || !alive[b] || version[a] != version_a || version[b] != version_b) continue;
     // b joins a.
@@ -184,6 +185,7 @@ void ApplyRigidNodeGroups(const RigidNodeGroups& groups, std::span<const Eigen::
   std::vector<int> size(groups.group_count, 0);
   for (const std::int32_t g : groups.group_of_node) ++size[g];
   for (auto& frame : *tracks) {
+    if (frame.size() != nodes) continue;
     std::vector<std::vector<PairSums>> node_sums(nodes, std::vector<PairSums>(1));
     AddNodeSums(rest, motion, frame, 0, &node_sums);
     std::vector<PairSums> sums(groups.group_count);

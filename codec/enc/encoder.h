@@ -176,9 +176,10 @@ struct EncoderTuning {
   /// (rigid_node_groups.h; 0: each node keeps its own). Measured (60 frames, HEVC q40;
   /// bench/DEFORM.md): at 1 scene:arm-block's block, upper arm, forearm and hand are each
   /// 96-100% in one group (16 frames, 3-view arc) and arm-block 6-ring gains 0.08 dB for 7%
-  /// fewer bytes, but samba 6-ring's accuracy is above 1.25x on 8 of 60 frames; at 0.5 no
-  /// frame is on samba 6-ring or cloth 3-arc (2-16% fewer bytes, the same D1). Off until 0.5
-  /// is measured on every pair.
+  /// fewer bytes, but samba 6-ring's accuracy is above 1.25x on 8 of 60 frames; at 0.5, over
+  /// every shared pair, D1 holds or rises, bytes fall by up to 16%, and one frame in 456 is
+  /// above 1.25x (1.26x), while arm-block's pieces are 18-98% in one group. Off: 0.5 is the
+  /// candidate default with --deform.
   double deform_rigid_group_factor = 0;
   int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
   /// Steps per radius on a key group's second frame, which has no velocity to predict from

@@ -178,9 +178,8 @@ struct EncoderTuning {
   /// 96-100% in one group (16 frames, 3-view arc) and arm-block 6-ring gains 0.08 dB for 7%
   /// fewer bytes, but samba 6-ring's accuracy is above 1.25x on 8 of 60 frames; at 0.5, over
   /// every shared pair, D1 holds or rises, bytes fall by up to 16%, and one frame in 456 is
-  /// above 1.25x (1.26x), while arm-block's pieces are 18-98% in one group. Off: 0.5 is the
-  /// candidate default with --deform.
-  double deform_rigid_group_factor = 0;
+  /// above 1.25x (1.26x), while arm-block's pieces are 18-98% in one group.
+  double deform_rigid_group_factor = 0.5;
   int deform_iterations = 3;  ///< Gauss-Newton steps per correspondence radius
   /// Steps per radius on a key group's second frame, which has no velocity to predict from
   /// (its start is the key frame's pose): arm-block's parts move up to 5.1 cm a frame, and 3

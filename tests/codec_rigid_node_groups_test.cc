@@ -110,7 +110,7 @@ TEST(RigidNodeGroups, AGroupCarriesTheRigidTransformThatBestFitsItsVertices) {
       FindRigidNodeGroups(row.rest, row.motion, row.adjacent, tracked, 0.001f);
   ASSERT_EQ(groups.group_count, 2);
   auto tracks = tracked;
-  ApplyRigidNodeGroups(groups, row.rest, row.motion, &tracks);
+  ApplyRigidNodeGroups(groups, &tracks);
   const auto exact = TwoBodies(10, 4, 5, -1, 0);
   for (std::size_t f = 0; f < tracks.size(); ++f) {
     for (int j = 0; j < 10; ++j) {

@@ -645,7 +645,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     const RigidNodeGroups groups = FindRigidNodeGroups(
         base.positions, graph.motion, graph.adjacent, tracks,
         static_cast<float>(options.tuning.deform_rigid_group_factor * ctx.seg.tolerance));
-    ApplyRigidNodeGroups(groups, base.positions, graph.motion, &tracks);
+    ApplyRigidNodeGroups(groups, &tracks);
     summary.rigid_groups = groups.group_count;
   }
   MarkSurface(ctx, base, observed, &analysis->motion, &summary);

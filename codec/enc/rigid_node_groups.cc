@@ -61,23 +61,6 @@ struct PairSums {
   }
 };
 
-/// Adds, for every vertex and node influencing it, the vertex at rest and where the node's
-/// transform in `transforms` puts it, weighted by the influence, to (*sums)[node][slot].
-void AddNodeSums(std::span<const Eigen::Vector3f> rest, const MotionModel& motion,
-                 std::span<const RigidTransform> transforms, std::size_t slot,
-                 std::vector<std::vector<PairSums>>* sums) {
-  for (std::size_t v = 0; v < rest.size() && v < motion.blends.size(); ++v) {
-    const VertexBlend& blend = motion.blends[v];
-    const Eigen::Vector3d p = rest[v].cast<double>();
-    for (int k = 0; k < blend.count; ++k) {
-      const BlendInfluence& influence = blend.influences[k];
-      if (influence.segment >= transforms.size() || influence.segment >= sums->size()) continue;
-      (*sums)[influence.segment][slot].Add(
-          p, transforms[influence.segment].Apply(rest[v]).cast<double>(), influence.weight);
-    }
-  }
-}
-
 }  // namespace
 
 RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
@@ -97,8 +80,18 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
   // transform puts it and weighted by its influence: a group's transform replaces the node's
   // on all of them, not just near the node.
   std::vector<std::vector<PairSums>> node_sums(nodes, std::vector<PairSums>(frames));
-  for (std::size_t f = 0; f < frames; ++f) {
-    AddNodeSums(rest, motion, tracks[f], f, &node_sums);
+  for (std::size_t v = 0; v < rest.size() && v < motion.blends.size(); ++v) {
+    const VertexBlend& blend = motion.blends[v];
+    for (int k = 0; k < blend.count; ++k) {
+      const BlendInfluence& influence = blend.influences[k];
+      if (influence.segment >= nodes) continue;
+      for (std::size_t f = 0; f < frames; ++f) {
+        if (influence.segment >= tracks[f].size()) continue;
+        node_sums[influence.segment][f].Add(
+            rest[v].cast<double>(),
+            tracks[f][influence.segment].Apply(rest[v]).cast<double>(), influence.weight);
+      }
+    }
   }
 
   // Groups by the id of their first node: members, sums per frame, neighbours, version.
@@ -168,38 +161,37 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
     --groups.group_count;
     for (const std::uint32_t k : neighbours[a]) push(std::min(a, k), std::max(a, k));
   }
+  groups.transforms.assign(frames, std::vector<RigidTransform>(groups.group_count));
   int next = 0;
   for (std::uint32_t g = 0; g < nodes; ++g) {
     if (!alive[g]) continue;
     for (const std::uint32_t j : members[g]) groups.group_of_node[j] = next;
+    for (std::size_t f = 0; f < frames && members[g].size() > 1; ++f) {
+      RigidTransform& fitted = groups.transforms[f][next];
+      if (group_sums[g][f].count == 0) {  // its nodes move no vertex
+        if (members[g][0] < tracks[f].size()) fitted = tracks[f][members[g][0]];
+        continue;
+      }
+      const auto [r, t] = group_sums[g][f].Fit();
+      fitted.rotation = Eigen::Quaternionf(r.cast<float>()).normalized();
+      fitted.translation = t.cast<float>();
+    }
     ++next;
   }
   return groups;
 }
 
-void ApplyRigidNodeGroups(const RigidNodeGroups& groups, std::span<const Eigen::Vector3f> rest,
-                          const MotionModel& motion,
+void ApplyRigidNodeGroups(const RigidNodeGroups& groups,
                           std::vector<std::vector<RigidTransform>>* tracks) {
   const std::size_t nodes = groups.group_of_node.size();
-  if (groups.group_count >= static_cast<int>(nodes) || motion.segment_count != nodes) return;
   std::vector<int> size(groups.group_count, 0);
   for (const std::int32_t g : groups.group_of_node) ++size[g];
-  for (auto& frame : *tracks) {
+  for (std::size_t f = 0; f < tracks->size() && f < groups.transforms.size(); ++f) {
+    std::vector<RigidTransform>& frame = (*tracks)[f];
     if (frame.size() != nodes) continue;
-    std::vector<std::vector<PairSums>> node_sums(nodes, std::vector<PairSums>(1));
-    AddNodeSums(rest, motion, frame, 0, &node_sums);
-    std::vector<PairSums> sums(groups.group_count);
-    for (std::size_t j = 0; j < nodes; ++j) sums[groups.group_of_node[j]] += node_sums[j][0];
-    std::vector<RigidTransform> fitted(groups.group_count);
-    for (int g = 0; g < groups.group_count; ++g) {
-      if (size[g] < 2 || sums[g].count == 0) continue;
-      const auto [r, t] = sums[g].Fit();
-      fitted[g].rotation = Eigen::Quaternionf(r.cast<float>()).normalized();
-      fitted[g].translation = t.cast<float>();
-    }
     for (std::size_t j = 0; j < nodes; ++j) {
       const std::int32_t g = groups.group_of_node[j];
-      if (size[g] >= 2 && sums[g].count > 0) frame[j] = fitted[g];
+      if (size[g] > 1) frame[j] = groups.transforms[f][g];
     }
   }
 }

@@ -21,6 +21,10 @@ namespace meshvid {
 struct RigidNodeGroups {
   std::vector<std::int32_t> group_of_node;  ///< per node, its group in [0, group_count)
   int group_count = 0;
+  /// Per frame of the tracks the groups were found in, per group, the rigid transform that
+  /// best maps the vertices its nodes move, at rest, onto where each node's own transform puts
+  /// them (least squares, weighted by the influences); identity for a group of one node.
+  std::vector<std::vector<RigidTransform>> transforms;
 };
 
 /// Joins neighbouring nodes (`adjacent`, per node) greedily, the pair that stays most rigid
@@ -35,10 +39,8 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
                                     float tolerance);
 
 /// Gives every node of a group of more than one node the group's transform in each frame of
-/// `tracks`: the rigid transform that best maps the vertices its nodes move, at rest, onto
-/// where each node's own transform puts them (least squares, weighted by the influences).
-void ApplyRigidNodeGroups(const RigidNodeGroups& groups, std::span<const Eigen::Vector3f> rest,
-                          const MotionModel& motion,
+/// `tracks`, the tracks `groups` were found in.
+void ApplyRigidNodeGroups(const RigidNodeGroups& groups,
                           std::vector<std::vector<RigidTransform>>* tracks);
 
 }  // namespace meshvid

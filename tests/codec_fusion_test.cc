@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "codec/common/triangle_distance.h"
 #include "codec/enc/decimation.h"
 #include "codec/enc/seen_free_space.h"
 #include "codec/enc/surface_fusion.h"
@@ -59,42 +60,18 @@ TriangleMesh MakeIcosphere(int levels, float radius = 1.0f) {
   return mesh;
 }
 
-// Distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-float PointTriangleDistance(const Vector3f& p, const Vector3f& a, const Vector3f& b,
-                            const Vector3f& c) {
-  const Vector3f ab = b - a, ac = c - a, ap = p - a;
-  const float d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vector3f bp = p - b;
-  const float d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).norm();
-  const Vector3f cp = p - c;
-  const float d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const float vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).norm();
-  const float va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).norm();
-  }
-  const float denom = 1 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
-}
-
 // Largest distance from a vertex of `from` to the surface of `to` (brute force).
 float MaxVertexDistance(const TriangleMesh& from, const TriangleMesh& to) {
   float worst = 0;
   for (const Vector3f& p : from.positions) {
     float best = INFINITY;
     for (const Triangle& t : to.triangles) {
-      best = std::min(best, PointTriangleDistance(p, to.positions[t[0]], to.positions[t[1]],
-                                                  to.positions[t[2]]));
+      best = std::min(best, SquaredDistanceToTriangle(p, to.positions[t[0]], to.positions[t[1]],
+                                                      to.positions[t[2]]));
     }
     worst = std::max(worst, best);
   }
-  return worst;
+  return std::sqrt(worst);
 }
 
 // True if every directed edge occurs once and its reverse once: closed and oriented.
@@ -149,6 +126,30 @@ TEST(DecimateMeshTest, MaxErrorStopsEarly) {
   EXPECT_GT(decimated->vertex_count(), 200u);  // a 50-vertex sphere deviates by ~0.1
   EXPECT_LT(decimated->vertex_count(), sphere.vertex_count());
   EXPECT_LE(MaxVertexDistance(sphere, *decimated), 0.002f * 1.001f);
+}
+
+// An open, bumpy sheet (waves plus noise): the quadrics would flatten it, the distance bound
+// stops the collapses that would leave any removed vertex farther from the surface than asked,
+// at every bound, and a looser bound leaves fewer vertices.
+TEST(DecimateMeshTest, MaxErrorHoldsOnABumpyOpenSheet) {
+  TriangleMesh sheet = testing::MakeGridPlane(1.0f, 60);
+  std::mt19937 random(7);
+  std::normal_distribution<float> noise(0.0f, 0.001f);
+  for (Vector3f& p : sheet.positions) {
+    p.z() = 0.02f * std::sin(9.0f * p.x()) * std::cos(7.0f * p.y()) + noise(random);
+  }
+  std::size_t previous = sheet.vertex_count();
+  for (const double bound : {0.002, 0.004, 0.008}) {
+    DecimationOptions options;
+    options.target_vertices = 20;
+    options.max_error = bound;
+    auto decimated = DecimateMesh(sheet, options);
+    ASSERT_TRUE(decimated.ok()) << decimated.status().ToString();
+    EXPECT_LE(MaxVertexDistance(sheet, *decimated), static_cast<float>(bound) * 1.001f);
+    EXPECT_GT(decimated->vertex_count(), 20u) << bound;  // the bound, not the target, stops it
+    EXPECT_LT(decimated->vertex_count(), previous) << bound;
+    previous = decimated->vertex_count();
+  }
 }
 
 TEST(DecimateMeshTest, PlaneToTriangleTargetKeepsOutline) {

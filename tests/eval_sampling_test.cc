@@ -107,6 +107,13 @@ TEST(EvalClosestPointTest, CoversInteriorEdgesAndVertices) {
   EXPECT_EQ(ClosestPointOnTriangle({1, -4, 0}, a, b, c), Eigen::Vector3d(1, 0, 0));
   EXPECT_EQ(ClosestPointOnTriangle({-3, 1, 0}, a, b, c), Eigen::Vector3d(0, 1, 0));
   EXPECT_EQ(ClosestPointOnTriangle({2, 2, 0}, a, b, c), Eigen::Vector3d(1, 1, 0));
+  // The float version (the decimation's distance bound) agrees.
+  const Eigen::Vector3f af(0, 0, 0), bf(2, 0, 0), cf(0, 2, 0);
+  EXPECT_EQ(ClosestPointOnTriangle<float>({2, 2, 0}, af, bf, cf), Eigen::Vector3f(1, 1, 0));
+  EXPECT_EQ(SquaredDistanceToTriangle<float>({-3, 1, 0}, af, bf, cf), 9.0f);
+  EXPECT_EQ(SquaredDistanceToTriangle<float>({0.5f, 0.5f, 3}, af, bf, cf), 9.0f);
+  // A degenerate triangle (a segment) gives the distance to the segment.
+  EXPECT_EQ(SquaredDistanceToTriangle<float>({1, 1, 0}, af, bf, bf), 1.0f);
 }
 
 TEST(EvalSurfaceDistanceTest, ExactDistanceToAPlaneAndItsBorder) {

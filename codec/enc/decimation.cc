@@ -16,8 +16,9 @@
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
-#include <OpenMesh/Tools/Decimater/ModHausdorffT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalDeviationT.hh>
+
+#include "codec/enc/removed_vertex_bound.h"
 
 namespace meshvid {
 namespace {
@@ -211,6 +212,61 @@ class ModBoundaryQuadricT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   OpenMesh::VPropHandleT<OpenMesh::Geometry::Quadricd> quadrics_;
 };
 
+// A max-heap (by operator<, as std::push_heap's) with four children a node: half the levels
+// of a binary heap, and a node's children share a cache line. The decimation's queue holds
+// hundreds of thousands of candidates, and sifting through it was most of its own loop.
+constexpr std::size_t kHeapArity = 4;
+
+template <class T>
+void SiftDown(std::vector<T>& heap, std::size_t i) {
+  const std::size_t n = heap.size();
+  T item = heap[i];
+  while (true) {
+    const std::size_t first = kHeapArity * i + 1;
+    if (first >= n) break;
+    std::size_t best = first;
+    const std::size_t last = std::min(first + kHeapArity, n);
+    for (std::size_t c = first + 1; c < last; ++c) {
+      if (heap[best] < heap[c]) best = c;
+    }
+    if (!(item < heap[best])) break;
+    heap[i] = heap[best];
+    i = best;
+  }
+  heap[i] = item;
+}
+
+/// Restores the heap after an item was appended.
+template <class T>
+void PushHeap(std::vector<T>& heap) {
+  std::size_t i = heap.size() - 1;
+  T item = heap[i];
+  while (i > 0) {
+    const std::size_t parent = (i - 1) / kHeapArity;
+    if (!(heap[parent] < item)) break;
+    heap[i] = heap[parent];
+    i = parent;
+  }
+  heap[i] = item;
+}
+
+/// Removes and returns the top (largest) item of a non-empty heap.
+template <class T>
+T PopHeap(std::vector<T>& heap) {
+  T top = heap.front();
+  heap.front() = heap.back();
+  heap.pop_back();
+  if (!heap.empty()) SiftDown(heap, 0);
+  return top;
+}
+
+/// Orders `heap` as a heap.
+template <class T>
+void MakeHeap(std::vector<T>& heap) {
+  if (heap.size() < 2) return;
+  for (std::size_t i = (heap.size() - 2) / kHeapArity + 1; i-- > 0;) SiftDown(heap, i);
+}
+
 // OpenMesh's decimater framework (its modules and legality tests) driven by a lazy queue of
 // halfedge collapses ordered by quadric cost. DecimaterT keeps one heap entry per vertex and,
 // after each collapse, runs every legality test on every outgoing halfedge of the former
@@ -238,12 +294,10 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
         if (!collapsed_since_fill) break;
         collapsed_since_fill = false;
         for (auto e : m.edges()) PushEdge(e);
-        std::make_heap(queue_.begin(), queue_.end());
+        MakeHeap(queue_);
         continue;
       }
-      std::pop_heap(queue_.begin(), queue_.end());
-      const Candidate candidate = queue_.back();
-      queue_.pop_back();
+      const Candidate candidate = PopHeap(queue_);
       const OmMesh::HalfedgeHandle h(candidate.halfedge);
       const OmMesh::EdgeHandle e = m.edge_handle(h);
       // Outdated (an end vertex changed and the edge was queued again) or gone.
@@ -264,7 +318,7 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
       collapsed_since_fill = true;
       for (auto g : m.voh_range(ci.v1)) {  // every edge at v1 has new costs
         PushEdge(m.edge_handle(g));
-        std::push_heap(queue_.begin(), queue_.end());
+        PushHeap(queue_);
       }
     }
     queue_.clear();
@@ -287,7 +341,7 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
     const float cost = quadric_->Cost(m.from_vertex_handle(h), m.to_vertex_handle(h));
     cost_[m.edge_handle(h).idx()] = cost;
     queue_.push_back({cost, h.idx(), one_way});
-    if (one_way) std::push_heap(queue_.begin(), queue_.end());
+    if (one_way) PushHeap(queue_);
   }
 
   // Appends the cheaper direction of edge e.
@@ -461,9 +515,9 @@ StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOp
         static_cast<float>(options.max_normal_deviation_degrees));
   }
   if (options.max_error > 0) {
-    OpenMesh::Decimater::ModHausdorffT<OmMesh>::Handle hausdorff;
-    decimater.add(hausdorff);
-    decimater.module(hausdorff).set_tolerance(static_cast<float>(options.max_error));
+    ModRemovedVertexBoundT<OmMesh>::Handle bound;
+    decimater.add(bound);
+    decimater.module(bound).set_max_distance(static_cast<float>(options.max_error));
   }
   if (options.max_aspect_ratio > 0) {
     OpenMesh::Decimater::ModAspectRatioT<OmMesh>::Handle aspect;

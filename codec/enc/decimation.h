@@ -18,7 +18,7 @@ struct DecimationOptions {
   /// are sized by triangles: set target_vertices = 0 to use this one alone).
   std::size_t target_triangles = 0;
   /// Largest distance (scene units) from any input vertex to the decimated surface (checked
-  /// collapse by collapse, OpenMesh's Hausdorff module; costs time); 0: unbounded.
+  /// collapse by collapse, ModRemovedVertexBoundT); 0: unbounded.
   double max_error = 0;
   /// Largest angle, in degrees, between a decimated face's normal and the normals of the
   /// original faces merged into it (OpenMesh's normal-cone module); 0: unbounded. Keeps the

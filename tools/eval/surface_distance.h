@@ -13,13 +13,10 @@
 
 #include "codec/common/embree_scene.h"
 #include "codec/common/mesh.h"
+#include "codec/common/triangle_distance.h"
 #include "format/status.h"
 
 namespace meshvid {
-
-/// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection 5.1.5).
-Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// Distance queries against one mesh. Build once, then query from any number of threads.
 class SurfaceDistance {

@@ -275,10 +275,6 @@ void MakeHeap(std::vector<T>& heap) {
 // are skipped; the legality tests (topology, flips, bound modules) run only on the candidate
 // popped. The collapse order is the same; candidates found illegal get another chance in a
 // full refill when the queue runs dry. Measured on range-image proxies: 3x fewer evaluations.
-// A collapse mostly raises the costs of the edges at the vertex kept (its quadric grows): such
-// an edge keeps its entry, marked outdated, and is queued again at its new cost only when that
-// entry comes out (a lower bound of its cost, so the order stays the same). Most change again
-// before then, so the queue holds a fraction of the entries it would.
 class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
  public:
   explicit LazyDecimater(OmMesh& mesh) : BaseDecimaterT<OmMesh>(mesh) {}
@@ -291,8 +287,6 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
   void DecimateTo(std::size_t max_vertices, std::size_t max_faces) {
     OmMesh& m = mesh();
     cost_.assign(m.n_edges(), 0.0f);
-    queued_halfedge_.assign(m.n_edges(), -1);
-    outdated_.assign(m.n_edges(), 0);
     std::size_t vertices = m.n_vertices(), faces = m.n_faces();
     bool collapsed_since_fill = true;
     while (vertices > max_vertices && faces > max_faces) {
@@ -308,11 +302,6 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
       const OmMesh::EdgeHandle e = m.edge_handle(h);
       // Outdated (an end vertex changed and the edge was queued again) or gone.
       if (cost_[e.idx()] != candidate.cost || m.status(e).deleted()) continue;
-      if (outdated_[e.idx()]) {  // its cost rose since it was queued: queued where it belongs
-        PushEdge(e);
-        PushHeap(queue_);
-        continue;
-      }
       cost_[e.idx()] = -1;  // no longer queued
       CollapseInfo ci(m, h);
       if (!is_collapse_legal(ci) || collapse_priority(ci) < 0) {
@@ -328,19 +317,8 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
       postprocess_collapse(ci);
       collapsed_since_fill = true;
       for (auto g : m.voh_range(ci.v1)) {  // every edge at v1 has new costs
-        const OmMesh::EdgeHandle changed = m.edge_handle(g);
-        const Candidate now = Cheaper(changed);
-        const Candidate queued{cost_[changed.idx()], queued_halfedge_[changed.idx()], false};
-        if (queued.cost < 0 || queued < now) {  // no entry, or it would come out earlier
-          PushEdge(changed);
-          PushHeap(queue_);
-        } else if (now.cost != queued.cost) {
-          // It would come out later than its entry: the entry, popped first, queues it again
-          // then (most edges change again before that, and are never queued again).
-          outdated_[changed.idx()] = 1;
-        }
-        // At the same cost the entry stays as it is: an entry is current while its cost is
-        // the edge's, and it comes out first.
+        PushEdge(m.edge_handle(g));
+        PushHeap(queue_);
       }
     }
     queue_.clear();
@@ -361,38 +339,25 @@ class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
   void Push(OmMesh::HalfedgeHandle h, bool one_way) {
     const OmMesh& m = mesh();
     const float cost = quadric_->Cost(m.from_vertex_handle(h), m.to_vertex_handle(h));
-    Queued({cost, h.idx(), one_way}, m.edge_handle(h));
+    cost_[m.edge_handle(h).idx()] = cost;
+    queue_.push_back({cost, h.idx(), one_way});
     if (one_way) PushHeap(queue_);
   }
 
-  // The cheaper direction of edge e.
-  Candidate Cheaper(OmMesh::EdgeHandle e) {
+  // Appends the cheaper direction of edge e.
+  void PushEdge(OmMesh::EdgeHandle e) {
     const OmMesh& m = mesh();
     const auto h0 = m.halfedge_handle(e, 0), h1 = m.halfedge_handle(e, 1);
     const auto a = m.to_vertex_handle(h1), b = m.to_vertex_handle(h0);
     const float cost0 = quadric_->Cost(a, b), cost1 = quadric_->Cost(b, a);
     const bool first = cost0 <= cost1;
-    return {first ? cost0 : cost1, (first ? h0 : h1).idx(), false};
-  }
-
-  // Appends the cheaper direction of edge e (the caller restores the heap order).
-  void PushEdge(OmMesh::EdgeHandle e) { Queued(Cheaper(e), e); }
-
-  // Appends `candidate` for edge e, its one current entry.
-  void Queued(const Candidate& candidate, OmMesh::EdgeHandle e) {
-    cost_[e.idx()] = candidate.cost;
-    queued_halfedge_[e.idx()] = candidate.halfedge;
-    outdated_[e.idx()] = 0;
-    queue_.push_back(candidate);
+    cost_[e.idx()] = first ? cost0 : cost1;
+    queue_.push_back({first ? cost0 : cost1, (first ? h0 : h1).idx(), false});
   }
 
   ModBoundaryQuadricT<OmMesh>* quadric_ = nullptr;
   std::vector<Candidate> queue_;
-  // Per edge, its current queue entry: cost (-1: none) and halfedge; and whether its cost
-  // rose since, so that the entry, when popped, queues the edge again instead.
-  std::vector<float> cost_;
-  std::vector<int> queued_halfedge_;
-  std::vector<char> outdated_;
+  std::vector<float> cost_;  // per edge: the cost of its current queue entry
 };
 
 // Disjoint-set forest over triangle corners.

@@ -19,9 +19,10 @@ namespace meshvid {
 /// surface. Each face keeps the input positions of the removed vertices nearest to it; a
 /// collapse of v0 into v1 is legal when every position kept by v0's faces, and v0's own, lies
 /// within the distance of one of the faces around v1 after it. The same rule as OpenMesh's
-/// ModHausdorffT, made cheap: a position within the distance of a vertex of those faces passes
-/// without a triangle test, and a position is handed on to its nearest new face skipping the
-/// faces whose bounding sphere is farther than the nearest found so far.
+/// ModHausdorffT, made cheap: a position within the distance of a corner of those faces passes
+/// without a triangle test; after a collapse only the positions of the faces that moved or went
+/// are handed on (the others' faces did not move), each to its nearest face around v1, skipping
+/// the faces whose bounding sphere is farther than the nearest found so far.
 template <class MeshT>
 class ModRemovedVertexBoundT : public OpenMesh::Decimater::ModBaseT<MeshT> {
  public:

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "codec/common/deformation_graph.h"
 #include "codec/common/point_tree.h"
+#include "codec/enc/closest_point_align.h"
 
 namespace meshvid {
 namespace {
@@ -23,6 +25,11 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& a) {
   m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
   return m;
 }
+
+/// A lost part is also searched for turned about its joint by +-1..kTurnSteps times
+/// kTurnDegrees about each axis.
+constexpr int kTurnSteps = 2;
+constexpr float kTurnDegrees = 20;
 
 /// The Gauss-Newton solve of one frame's node transforms (DeformationTracker::Track).
 class FrameSolver {
@@ -38,18 +45,9 @@ class FrameSolver {
         tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize)),
         rigidity_(rigidity),
         match_(base.mesh.vertex_count()) {
-    const auto& rest = base.mesh.positions;
-    // Where node j put node k in the previous frame, in node j's rest coordinates: the rigidity
-    // holds the shape the last frame had, not the key frame's (a limb bent away from its rest
-    // pose is not pulled back straight).
-    anchors_.resize(graph.node_count());
-    for (std::size_t j = 0; j < anchors_.size(); ++j) {
-      const RigidTransform inverse = Inverse(previous[j]);
-      for (std::int32_t k : graph.adjacent[j]) {
-        anchors_[j].push_back(
-            inverse.Apply(previous[k].Apply(rest[graph.motion.node_vertices[k]])).cast<double>());
-      }
-    }
+    // The rigidity holds the shape the last frame had, not the key frame's (a limb bent away
+    // from its rest pose is not pulled back straight).
+    HoldShapeOf(previous);
     IndexBlocks();
     // Correspondence radii halving from the search distance to 2 tolerances.
     for (float r = options.max_distance; r > 2.5f * options.tolerance; r *= 0.5f) {
@@ -58,11 +56,26 @@ class FrameSolver {
     radii_.push_back(2 * options.tolerance);
   }
 
+  /// Makes the rigidity hold the nodes to the shape `shape` gives them: where node j puts
+  /// node k, in node j's rest coordinates.
+  void HoldShapeOf(std::span<const RigidTransform> shape) {
+    const auto& rest = base_.mesh.positions;
+    anchors_.assign(graph_.node_count(), {});
+    for (std::size_t j = 0; j < anchors_.size(); ++j) {
+      const RigidTransform inverse = Inverse(shape[j]);
+      for (std::int32_t k : graph_.adjacent[j]) {
+        anchors_[j].push_back(
+            inverse.Apply(shape[k].Apply(rest[graph_.motion.node_vertices[k]])).cast<double>());
+      }
+    }
+  }
+
   /// Gauss-Newton from `transforms`, `iterations` steps per radius, coarse to fine, the
   /// rigidity `coarse_stiffness` times stiffer at the first radius (the first call also
-  /// decides which way the data's normals face, from its start).
+  /// decides which way the data's normals face, from its start); with `finest_only`, at the
+  /// two finest radii alone.
   std::vector<RigidTransform> Solve(std::vector<RigidTransform> transforms, int iterations,
-                                    double coarse_stiffness = 1) {
+                                    double coarse_stiffness = 1, bool finest_only = false) {
     if (!facing_known_) {
       facing_ = DataFacing(transforms);
       facing_known_ = true;
@@ -71,7 +84,8 @@ class FrameSolver {
     // geometrically to the set rigidity at the last radius (non-rigid ICP's decreasing
     // stiffness): a fast part first moves as a whole, then bends.
     const double coarse = std::max(1.0, coarse_stiffness);
-    for (std::size_t r = 0; r < radii_.size(); ++r) {
+    const std::size_t first = finest_only && radii_.size() > 2 ? radii_.size() - 2 : 0;
+    for (std::size_t r = first; r < radii_.size(); ++r) {
       const double stiffness =
           radii_.size() > 1 ? std::pow(coarse, double(radii_.size() - 1 - r) /
                                                    double(radii_.size() - 1))
@@ -89,6 +103,90 @@ class FrameSolver {
   /// How many vertices posed by `transforms` have data within the last radius.
   std::size_t Matched(const std::vector<RigidTransform>& transforms) {
     return Correspond(transforms, radii_.back());
+  }
+
+  /// Searches again for the parts the solve lost (DeformationTrackingOptions::
+  /// reacquire_max_distance) and moves each found one's nodes there; returns how many moved.
+  int Reacquire(std::vector<RigidTransform>* transforms) {
+    const float finest = radii_.back();
+    Correspond(*transforms, finest);
+    const std::size_t nodes = graph_.node_count();
+    std::vector<std::vector<std::uint32_t>> nearest(nodes);  // per node, the vertices nearest
+    for (std::uint32_t v = 0; v < match_.size(); ++v) {
+      nearest[graph_.motion.blends[v].influences[0].segment].push_back(v);
+    }
+    auto supported = [&](std::span<const std::uint32_t> vertices) {
+      return static_cast<std::size_t>(std::count_if(
+          vertices.begin(), vertices.end(), [&](std::uint32_t v) { return match_[v] >= 0; }));
+    };
+    std::vector<char> lost(nodes, 0);
+    for (std::size_t j = 0; j < nodes; ++j) {
+      lost[j] = !nearest[j].empty() && double(supported(nearest[j])) <
+                                           options_.reacquire_below * double(nearest[j].size());
+    }
+    const float widest = std::max(options_.reacquire_max_distance, options_.max_distance);
+    int moved = 0;
+    std::vector<char> seen(nodes, 0);
+    for (std::size_t seed = 0; seed < nodes; ++seed) {
+      if (!lost[seed] || seen[seed]) continue;
+      // The connected part of lost nodes around `seed`, and the vertices nearest to them.
+      std::vector<std::uint32_t> part{static_cast<std::uint32_t>(seed)}, members;
+      seen[seed] = 1;
+      for (std::size_t i = 0; i < part.size(); ++i) {
+        members.insert(members.end(), nearest[part[i]].begin(), nearest[part[i]].end());
+        for (const std::int32_t k : graph_.adjacent[part[i]]) {
+          if (lost[k] && !seen[k]) seen[k] = 1, part.push_back(static_cast<std::uint32_t>(k));
+        }
+      }
+      const double size = double(members.size());
+      if (members.size() < std::size_t(std::max(3, options_.reacquire_min_vertices))) continue;
+      const std::size_t before = supported(members);
+      std::size_t best = before;
+      std::optional<RigidTransform> found;
+      for (float radius = 2 * options_.max_distance;; radius *= 2) {
+        radius = std::min(radius, widest);
+        const RigidTransform aligned = ClosestPointAlign(tree_, frame_.points, posed_, members,
+                                                         radius, finest, RigidTransform{});
+        const std::size_t agree = Supported(aligned, members, finest);
+        if (agree > best) best = agree, found = aligned;
+        if (radius >= widest) break;
+      }
+      // Turned about where the part hangs on the rest (the found nodes beside it; its centre
+      // when it hangs on nothing): a limb swings about its joint.
+      Eigen::Vector3f pivot = Eigen::Vector3f::Zero();
+      int pivots = 0;
+      for (const std::uint32_t j : part) {
+        for (const std::int32_t k : graph_.adjacent[j]) {
+          if (!lost[k]) pivot += posed_[graph_.motion.node_vertices[k]], ++pivots;
+        }
+      }
+      if (pivots == 0) {
+        for (const std::uint32_t v : members) pivot += posed_[v];
+        pivots = static_cast<int>(members.size());
+      }
+      pivot /= float(pivots);
+      for (int axis = 0; axis < 3 && kTurnSteps > 0; ++axis) {
+        for (int step = -kTurnSteps; step <= kTurnSteps; ++step) {
+          if (step == 0) continue;
+          RigidTransform turned;
+          turned.rotation = Eigen::Quaternionf(
+              Eigen::AngleAxisf(float(step) * kTurnDegrees * 3.14159265f / 180,
+                                Eigen::Vector3f::Unit(axis)));
+          turned.translation = pivot - turned.rotation * pivot;
+          const RigidTransform aligned = ClosestPointAlign(
+              tree_, frame_.points, posed_, members, options_.max_distance, finest, turned);
+          const std::size_t agree = Supported(aligned, members, finest);
+          if (agree > best) best = agree, found = aligned;
+        }
+      }
+      if (!found || double(best) < double(before) + options_.reacquire_gain * size ||
+          double(best) < options_.reacquire_below * size) {
+        continue;
+      }
+      for (const std::uint32_t j : part) (*transforms)[j] = Compose(*found, (*transforms)[j]);
+      ++moved;
+    }
+    return moved;
   }
 
  private:
@@ -131,6 +229,28 @@ class FrameSolver {
     });
     return static_cast<std::size_t>(
         std::count_if(match_.begin(), match_.end(), [](std::int32_t m) { return m >= 0; }));
+  }
+
+  /// How many of `members`, posed as the last Correspond() left them and moved by `move`, have
+  /// a data point within `radius` whose normal agrees.
+  std::size_t Supported(const RigidTransform& move, std::span<const std::uint32_t> members,
+                        float radius) const {
+    constexpr int kCandidates = 8;
+    std::size_t count = 0;
+    for (const std::uint32_t v : members) {
+      const Eigen::Vector3f at = move.Apply(posed_[v]);
+      const Eigen::Vector3f normal = move.rotation * normals_[v];
+      std::uint32_t index[kCandidates];
+      float squared[kCandidates];
+      const std::size_t found = tree_.knnSearch(at.data(), kCandidates, index, squared);
+      for (std::size_t k = 0; k < found && squared[k] <= radius * radius; ++k) {
+        if (facing_ * frame_.normals[index[k]].dot(normal) >= options_.min_normal_cos) {
+          ++count;
+          break;
+        }
+      }
+    }
+    return count;
   }
 
   /// The index of the normal equations' 6x6 block of nodes (a, b), added if new.
@@ -355,7 +475,8 @@ DeformationTracker::DeformationTracker(const BaseTopology& base, const Deformati
 
 std::vector<RigidTransform> DeformationTracker::Track(
     const TrackingData& frame, std::span<const RigidTransform> previous,
-    std::span<const RigidTransform> before) const {
+    std::span<const RigidTransform> before, DeformationTrackStats* stats) const {
+  if (stats != nullptr) *stats = DeformationTrackStats{};
   const std::size_t nodes = graph_.node_count();
   std::vector<RigidTransform> predicted(previous.begin(), previous.end());
   if (before.size() != previous.size()) before = {};
@@ -364,19 +485,34 @@ std::vector<RigidTransform> DeformationTracker::Track(
   }
   if (frame.points.empty() || nodes == 0) return predicted;
   FrameSolver solver(base_, graph_, options_, frame, previous, options_.rigidity * edge_weight_);
-  // Without a velocity (the key group's second frame), from the last pose with more steps and
-  // stiff at first: the whole frame's motion is left to the solve.
+  std::vector<RigidTransform> best;
   if (before.empty()) {
-    return solver.Solve(std::move(predicted), options_.first_iterations,
+    // Without a velocity (the key group's second frame), from the last pose with more steps
+    // and stiff at first: the whole frame's motion is left to the solve.
+    best = solver.Solve(std::move(predicted), options_.first_iterations,
                         options_.coarse_stiffness);
+  } else {
+    // From the constant-velocity prediction and from the last pose (a part that stops or
+    // turns back is found from where it was): the pose more of the base's vertices find data
+    // near (within the last radius) is kept.
+    best = solver.Solve(predicted, options_.iterations);
+    std::vector<RigidTransform> held = solver.Solve(
+        std::vector<RigidTransform>(previous.begin(), previous.end()), options_.iterations);
+    if (solver.Matched(held) > solver.Matched(best)) best = std::move(held);
   }
-  // From the constant-velocity prediction and from the last pose (a part that stops or turns
-  // back is found from where it was): the pose more of the base's vertices find data near
-  // (within the last radius) is kept.
-  std::vector<RigidTransform> best = solver.Solve(predicted, options_.iterations);
-  std::vector<RigidTransform> held = solver.Solve(
-      std::vector<RigidTransform>(previous.begin(), previous.end()), options_.iterations);
-  if (solver.Matched(held) > solver.Matched(best)) best = std::move(held);
+  if (options_.reacquire_max_distance > 0) {
+    std::vector<RigidTransform> moved = best;
+    const int parts = solver.Reacquire(&moved);
+    if (parts > 0) {
+      // Held to the shape the found parts give it: the last frame's would pull them back.
+      solver.HoldShapeOf(moved);
+      moved = solver.Solve(std::move(moved), options_.iterations, 1, /*finest_only=*/true);
+      if (solver.Matched(moved) > solver.Matched(best)) {
+        best = std::move(moved);
+        if (stats != nullptr) stats->reacquired = parts;
+      }
+    }
+  }
   return best;
 }
 

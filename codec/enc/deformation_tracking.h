@@ -9,7 +9,9 @@
 // (point-to-plane, and a little point-to-point so that it does not slide along flat data),
 // and neighbouring nodes are held to agree on where they put each other as they did in the
 // previous frame (as rigid as possible from frame to frame). Coarse to fine: the
-// correspondence radius halves from the search distance to two tolerances.
+// correspondence radius halves from the search distance to two tolerances. A part that
+// finds no data near where the solve left it (a limb that moved farther than the search
+// distance) is searched for again over the whole frame as one rigid body.
 #ifndef MESHVID_CODEC_ENC_DEFORMATION_TRACKING_H_
 #define MESHVID_CODEC_ENC_DEFORMATION_TRACKING_H_
 
@@ -61,6 +63,22 @@ struct DeformationTrackingOptions {
   int iterations = 3;  ///< Gauss-Newton steps per radius
   /// Steps per radius on a frame without a velocity to predict from (Track's `before` empty).
   int first_iterations = 3;
+  /// Re-acquisition of lost parts (0: none): after the solve, nodes fewer than
+  /// `reacquire_below` of whose nearest vertices have data within the last radius are joined
+  /// into connected parts; each part of at least `reacquire_min_vertices` such vertices is
+  /// aligned as one rigid body by closest points over the whole frame, within radii widening
+  /// from twice max_distance to this distance, and moved where at least `reacquire_gain` more
+  /// of them (and `reacquire_below` in all) find data. The frame is then solved again at the
+  /// two finest radii, and kept when more of the base's vertices find data.
+  float reacquire_max_distance = 0;
+  float reacquire_below = 0.5f;
+  float reacquire_gain = 0.2f;
+  int reacquire_min_vertices = 12;
+};
+
+/// What one frame's tracking did beyond the solve.
+struct DeformationTrackStats {
+  int reacquired = 0;  ///< lost parts moved to where their data is
 };
 
 /// Tracks the nodes of one key group frame by frame.
@@ -74,7 +92,8 @@ class DeformationTracker {
   /// `before` (empty: none, the prediction is `previous`).
   std::vector<RigidTransform> Track(const TrackingData& frame,
                                     std::span<const RigidTransform> previous,
-                                    std::span<const RigidTransform> before) const;
+                                    std::span<const RigidTransform> before,
+                                    DeformationTrackStats* stats = nullptr) const;
 
  private:
   const BaseTopology& base_;

@@ -193,6 +193,16 @@ struct EncoderTuning {
   /// threshold 0.005), fused against proxy: samba 6-ring D1 56.38 against 56.21 dB (28 and
   /// 29 key groups), arm-block 6-ring 52.61 against 52.51 dB (35 and 31).
   bool deform_track_fused = true;
+  /// With deformation_tracking, a part the solve leaves without data near it is searched for
+  /// again over the whole frame as one rigid body (DeformationTrackingOptions::
+  /// reacquire_max_distance, with reacquire_below, reacquire_gain, reacquire_min_vertices and
+  /// reacquire_max_distance above). Measured (60 frames, horse-gallop 48, HEVC q40;
+  /// bench/DEFORM.md): horse-gallop 41 key groups instead of 42 (3-arc) and 32 instead of 34
+  /// (6-ring) at equal D1, arm-block 6-ring 22 instead of 21 (-0.03 dB), the other pairs the
+  /// same key groups within 0.02 dB; but 7 of 456 frames, all in key groups where a part was
+  /// found again, 1.5-2.4x as far from the truth (accuracy RMS). Off by default: fidelity
+  /// first.
+  bool deform_reacquire = false;
 
   // --- detail (docs/encoder-method.md section 4)
   /// Farthest hit along a sample normal, and the displacement range a key group must keep its
@@ -280,6 +290,9 @@ struct KeyGroupSummary {
   /// With deformation_tracking: the groups of nodes moving together as one rigid body
   /// (EncoderTuning::deform_rigid_group_factor; the segments when nodes are not joined).
   int rigid_groups = 0;
+  /// With deformation_tracking: lost parts found again over the frames the key group kept
+  /// (EncoderTuning::deform_reacquire).
+  int reacquired_parts = 0;
   double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view
   double key_frame_unexplained = 0;  ///< share of the key frame's points the base cannot reach

@@ -530,6 +530,12 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   tracking.point_weight = options.tuning.deform_point_weight;
   tracking.iterations = options.tuning.deform_iterations;
   tracking.first_iterations = options.tuning.deform_first_iterations;
+  if (options.tuning.deform_reacquire) {
+    tracking.reacquire_max_distance = ctx.lengths.reacquire_max_distance;
+    tracking.reacquire_below = static_cast<float>(options.tuning.reacquire_below);
+    tracking.reacquire_gain = static_cast<float>(options.tuning.reacquire_gain);
+    tracking.reacquire_min_vertices = options.tuning.reacquire_min_vertices;
+  }
   const DeformationTracker tracker(topology, graph, tracking);
   // The key group's second frame is also solved at the set rigidity throughout (see below).
   DeformationTrackingOptions supple_tracking = tracking;
@@ -577,8 +583,10 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     kept.positions = std::move(fused.positions);
     return TrackingData{kept.positions, kept.normals};
   };
-  // A frame's pose already tracked while looking ahead from the one before.
+  // A frame's pose already tracked while looking ahead from the one before, and the lost
+  // parts its tracking found again.
   std::optional<std::vector<RigidTransform>> looked_ahead;
+  int looked_ahead_reacquired = 0;
   for (int t = start + 1; t < ctx.end; ++t) {
     if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
     proxies->erase(proxies->begin(), proxies->lower_bound(t));
@@ -589,11 +597,13 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
         tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
                            : std::span<const RigidTransform>();
     std::vector<RigidTransform> next;
+    DeformationTrackStats next_stats;
     if (looked_ahead) {
       next = *std::move(looked_ahead);
+      next_stats.reacquired = looked_ahead_reacquired;
       looked_ahead.reset();
     } else {
-      next = tracker.Track(data, tracks.back(), before);
+      next = tracker.Track(data, tracks.back(), before, &next_stats);
     }
     if (tracks.size() == 1 && supple_tracker && t + 1 < ctx.end) {
       // The second frame has no velocity to predict from. Solved stiff at first, a fast part
@@ -602,26 +612,33 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       // data) and part at the next, tracked from each: the start whose next frame leaves less
       // of the data unexplained and less of the surface seen through is kept, the stiff one on
       // a tie.
-      std::vector<RigidTransform> supple = supple_tracker->Track(data, tracks.back(), {});
+      DeformationTrackStats supple_stats;
+      std::vector<RigidTransform> supple =
+          supple_tracker->Track(data, tracks.back(), {}, &supple_stats);
       MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(t + 1));
       const FrameProxy& ahead_proxy = (*proxies)[t + 1];
       auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
-                            std::vector<RigidTransform>* ahead_pose) {
+                            std::vector<RigidTransform>* ahead_pose,
+                            DeformationTrackStats* ahead_stats) {
         if (may_cut && !StillExplains(key_fit, meter.Measure(pose, proxy),
                                       KeyGroupThreshold(options))) {
           return std::numeric_limits<double>::infinity();
         }
-        *ahead_pose = tracker.Track(ahead, pose, tracks.back());
+        *ahead_pose = tracker.Track(ahead, pose, tracks.back(), ahead_stats);
         return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
       };
       std::vector<RigidTransform> stiff_ahead, supple_ahead;
-      const double stiff_miss = miss_ahead(next, &stiff_ahead);
-      const double supple_miss = miss_ahead(supple, &supple_ahead);
+      DeformationTrackStats stiff_ahead_stats, supple_ahead_stats;
+      const double stiff_miss = miss_ahead(next, &stiff_ahead, &stiff_ahead_stats);
+      const double supple_miss = miss_ahead(supple, &supple_ahead, &supple_ahead_stats);
       if (supple_miss < stiff_miss) {
         next = std::move(supple);
+        next_stats = supple_stats;
         looked_ahead = std::move(supple_ahead);
+        looked_ahead_reacquired = supple_ahead_stats.reacquired;
       } else if (std::isfinite(stiff_miss)) {
         looked_ahead = std::move(stiff_ahead);
+        looked_ahead_reacquired = stiff_ahead_stats.reacquired;
       }
     }
     if (may_cut) {
@@ -636,6 +653,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     if (proxy.target) {
       ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);
     }
+    summary.reacquired_parts += next_stats.reacquired;
     tracks.push_back(std::move(next));
   }
   summary.frames = static_cast<int>(tracks.size());

@@ -146,6 +146,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"segments", k.segments},
                                {"patches", k.patches},
                                {"rigid_groups", k.rigid_groups},
+                               {"reacquired_parts", k.reacquired_parts},
                                {"registered_share", k.registered_share},
                                {"surface_share", k.surface_share},
                                {"key_frame_unexplained", k.key_frame_unexplained},
@@ -462,6 +463,11 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--deform-fused", o.tuning.deform_track_fused,
                   "With --deform, track each frame to its views fused into a closed surface "
                   "instead of to the views themselves")
+      ->capture_default_str();
+  cmd->add_option("--deform-reacquire", o.tuning.deform_reacquire,
+                  "With --deform, search a part the tracking lost again over the whole frame "
+                  "as one rigid body (within --reacquire-distance; --reacquire-below, "
+                  "--reacquire-gain and --reacquire-min-vertices as for the segments)")
       ->capture_default_str();
   cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
                   "With --deform, Gauss-Newton steps per correspondence radius")

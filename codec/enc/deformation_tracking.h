@@ -67,7 +67,8 @@ struct DeformationTrackingOptions {
   /// `reacquire_below` of whose nearest vertices have data within the last radius are joined
   /// into connected parts; each part of at least `reacquire_min_vertices` such vertices is
   /// aligned as one rigid body by closest points over the whole frame, within radii widening
-  /// from twice max_distance to this distance, and moved where at least `reacquire_gain` more
+  /// from twice max_distance to this distance, and from its pose turned about its joint by 20
+  /// and 40 degrees either way about each axis, and moved where at least `reacquire_gain` more
   /// of them (and `reacquire_below` in all) find data. The frame is then solved again at the
   /// two finest radii, and kept when more of the base's vertices find data.
   float reacquire_max_distance = 0;

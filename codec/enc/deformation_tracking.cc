@@ -143,12 +143,16 @@ class FrameSolver {
       const std::size_t before = supported(members);
       std::size_t best = before;
       std::optional<RigidTransform> found;
-      for (float radius = 2 * options_.max_distance;; radius *= 2) {
-        radius = std::min(radius, widest);
-        const RigidTransform aligned = ClosestPointAlign(tree_, frame_.points, posed_, members,
-                                                         radius, finest, RigidTransform{});
+      // Aligned from `start` within `radius`; kept when more of the part lands on data.
+      auto try_from = [&](const RigidTransform& start, float radius) {
+        const RigidTransform aligned =
+            ClosestPointAlign(tree_, frame_.points, posed_, members, radius, finest, start);
         const std::size_t agree = Supported(aligned, members, finest);
         if (agree > best) best = agree, found = aligned;
+      };
+      for (float radius = 2 * options_.max_distance;; radius *= 2) {
+        radius = std::min(radius, widest);
+        try_from(RigidTransform{}, radius);
         if (radius >= widest) break;
       }
       // Turned about where the part hangs on the rest (the found nodes beside it; its centre
@@ -165,18 +169,14 @@ class FrameSolver {
         pivots = static_cast<int>(members.size());
       }
       pivot /= float(pivots);
-      for (int axis = 0; axis < 3 && kTurnSteps > 0; ++axis) {
+      for (int axis = 0; axis < 3; ++axis) {
         for (int step = -kTurnSteps; step <= kTurnSteps; ++step) {
           if (step == 0) continue;
           RigidTransform turned;
-          turned.rotation = Eigen::Quaternionf(
-              Eigen::AngleAxisf(float(step) * kTurnDegrees * 3.14159265f / 180,
-                                Eigen::Vector3f::Unit(axis)));
+          turned.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(
+              float(step * kTurnDegrees * M_PI / 180), Eigen::Vector3f::Unit(axis)));
           turned.translation = pivot - turned.rotation * pivot;
-          const RigidTransform aligned = ClosestPointAlign(
-              tree_, frame_.points, posed_, members, options_.max_distance, finest, turned);
-          const std::size_t agree = Supported(aligned, members, finest);
-          if (agree > best) best = agree, found = aligned;
+          try_from(turned, options_.max_distance);
         }
       }
       if (!found || double(best) < double(before) + options_.reacquire_gain * size ||
@@ -213,19 +213,8 @@ class FrameSolver {
   std::size_t Correspond(const std::vector<RigidTransform>& transforms, float radius) {
     PoseVertices(graph_.motion, transforms, base_.mesh.positions, &posed_);
     ComputeVertexNormals(posed_, base_.mesh.triangles, &normals_);
-    constexpr int kCandidates = 8;
     tbb::parallel_for(std::size_t(0), posed_.size(), [&](std::size_t v) {
-      match_[v] = -1;
-      std::uint32_t index[kCandidates];
-      float squared[kCandidates];
-      const std::size_t found = tree_.knnSearch(posed_[v].data(), kCandidates, index, squared);
-      for (std::size_t k = 0; k < found; ++k) {
-        if (squared[k] > radius * radius) break;
-        if (facing_ * frame_.normals[index[k]].dot(normals_[v]) >= options_.min_normal_cos) {
-          match_[v] = static_cast<std::int32_t>(index[k]);
-          break;
-        }
-      }
+      match_[v] = AgreeingDataPoint(posed_[v], normals_[v], radius);
     });
     return static_cast<std::size_t>(
         std::count_if(match_.begin(), match_.end(), [](std::int32_t m) { return m >= 0; }));
@@ -235,22 +224,27 @@ class FrameSolver {
   /// a data point within `radius` whose normal agrees.
   std::size_t Supported(const RigidTransform& move, std::span<const std::uint32_t> members,
                         float radius) const {
+    return static_cast<std::size_t>(
+        std::count_if(members.begin(), members.end(), [&](std::uint32_t v) {
+          return AgreeingDataPoint(move.Apply(posed_[v]), move.rotation * normals_[v], radius) >=
+                 0;
+        }));
+  }
+
+  /// The nearest data point within `radius` of `at` whose normal agrees with `normal` (among
+  /// the nearest few), or -1.
+  std::int32_t AgreeingDataPoint(const Eigen::Vector3f& at, const Eigen::Vector3f& normal,
+                                 float radius) const {
     constexpr int kCandidates = 8;
-    std::size_t count = 0;
-    for (const std::uint32_t v : members) {
-      const Eigen::Vector3f at = move.Apply(posed_[v]);
-      const Eigen::Vector3f normal = move.rotation * normals_[v];
-      std::uint32_t index[kCandidates];
-      float squared[kCandidates];
-      const std::size_t found = tree_.knnSearch(at.data(), kCandidates, index, squared);
-      for (std::size_t k = 0; k < found && squared[k] <= radius * radius; ++k) {
-        if (facing_ * frame_.normals[index[k]].dot(normal) >= options_.min_normal_cos) {
-          ++count;
-          break;
-        }
+    std::uint32_t index[kCandidates];
+    float squared[kCandidates];
+    const std::size_t found = tree_.knnSearch(at.data(), kCandidates, index, squared);
+    for (std::size_t k = 0; k < found && squared[k] <= radius * radius; ++k) {
+      if (facing_ * frame_.normals[index[k]].dot(normal) >= options_.min_normal_cos) {
+        return static_cast<std::int32_t>(index[k]);
       }
     }
-    return count;
+    return -1;
   }
 
   /// The index of the normal equations' 6x6 block of nodes (a, b), added if new.

@@ -34,15 +34,15 @@ MemoryFrameSource MemoryFrames(const std::vector<TriangleMesh>& frames) {
 }
 
 /// A still ellipsoid and a block (a second ellipsoid) overlapping its end, one surface as the
-/// fusion sees it. The block drifts along x by `drift` a frame and, from frame `jump_frame`
-/// on, sits 0.3 higher (a sixth of the scene's size).
-std::vector<TriangleMesh> TwoBodyFrames(int frames, float drift, int jump_frame) {
+/// fusion sees it, a frame for each of `heights`. The block drifts along x by `drift` a frame
+/// and sits `heights[f]` higher in frame f.
+std::vector<TriangleMesh> TwoBodyFramesAtHeights(float drift, const std::vector<float>& heights) {
   const TriangleMesh sphere = testing::LatLongSphere(32, 64);
   const Eigen::Vector3f body(0.6f, 0.25f, 0.25f), block(0.35f, 0.25f, 0.25f);
   std::vector<TriangleMesh> result;
-  for (int f = 0; f < frames; ++f) {
+  for (std::size_t f = 0; f < heights.size(); ++f) {
     TriangleMesh still = sphere, moving = sphere;
-    const Eigen::Vector3f offset(0.7f + drift * f, f >= jump_frame ? 0.3f : 0.0f, 0);
+    const Eigen::Vector3f offset(0.7f + drift * float(f), heights[f], 0);
     for (auto& p : still.positions) p = p.cwiseProduct(body);
     for (auto& p : moving.positions) p = p.cwiseProduct(block) + offset;
     still.normals.clear();
@@ -53,6 +53,14 @@ std::vector<TriangleMesh> TwoBodyFrames(int frames, float drift, int jump_frame)
     result.push_back(std::move(frame));
   }
   return result;
+}
+
+/// TwoBodyFramesAtHeights with the block jumping 0.3 higher (a sixth of the scene's size) at
+/// frame `jump_frame`.
+std::vector<TriangleMesh> TwoBodyFrames(int frames, float drift, int jump_frame) {
+  std::vector<float> heights(frames);
+  for (int f = 0; f < frames; ++f) heights[f] = f >= jump_frame ? 0.3f : 0.0f;
+  return TwoBodyFramesAtHeights(drift, heights);
 }
 
 struct Encoded {
@@ -239,6 +247,27 @@ TEST(KeyGroups, OneKeyGroupAtMostKeepsOneBaseThroughTheJump) {
   auto last = (*decoder)->DecodeFrame(9, 1);
   ASSERT_TRUE(first.ok() && last.ok());
   EXPECT_EQ(first->triangles, last->triangles);
+}
+
+TEST(KeyGroups, BasesMadeAheadGiveTheSameFile) {
+  // The block jumps at frames 2, 3, 4, 6 and 7: key groups of one frame in a row (the next
+  // bases made ahead and taken), then one of two frames (a base made ahead and dropped).
+  const std::vector<float> heights = {0, 0, 0.3f, 0, 0.3f, 0.3f, 0, 0.3f, 0.3f};
+  const std::vector<TriangleMesh> frames = TwoBodyFramesAtHeights(0.01f, heights);
+  EncoderOptions options = TestOptions();
+  ASSERT_TRUE(options.tuning.base_ahead);
+  const Encoded ahead = Encode(frames, options);
+  options.tuning.base_ahead = false;
+  const Encoded in_turn = Encode(frames, options);
+  std::vector<int> firsts, lengths;
+  for (const KeyGroupSummary& k : ahead.summary.key_groups) {
+    firsts.push_back(k.first_frame);
+    lengths.push_back(k.frames);
+  }
+  EXPECT_EQ(firsts, (std::vector<int>{0, 2, 3, 4, 6, 7}));
+  EXPECT_EQ(lengths, (std::vector<int>{2, 1, 1, 2, 1, 2}));
+  ASSERT_FALSE(ahead.bytes.empty());
+  EXPECT_TRUE(ahead.bytes == in_turn.bytes) << "the files differ";
 }
 
 TEST(KeyGroups, ASheetWhoseEdgeRecedesEndsTheKeyGroupWhereACameraSeesPastIt) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "codec/enc/detail.h"
+#include "codec/enc/key_frame_ahead.h"
 #include "codec/enc/key_group_analysis.h"
 #include "codec/enc/mvid_writer.h"
 
@@ -34,6 +36,11 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.proxy_max_edge = pick(o.tuning.proxy_max_edge, deforming ? 0.04 : 0);
   return l;
 }
+
+/// Key frames whose bases are made ahead after a key group of one frame (base_ahead): a base
+/// is mostly a decimation on one core, so two made beside the key group's own analysis keep
+/// both cores busy.
+constexpr int kBasesAhead = 2;
 
 /// Translation step of the transform tracks as a fraction of the size, by default
 /// (EncoderTuning::transform_step).
@@ -304,13 +311,34 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   std::unique_ptr<MvidWriter> writer;
   std::size_t filled = 0, hits = 0, samples = 0;
   ProxyCache proxies;
+  KeyFrameAhead ahead(ctx);
   for (int start = first; start < end;) {
     const bool may_cut = options.max_key_groups == 0 ||
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
     auto analysis_start = Clock::now();
     const int previous_frames = summary.key_groups.empty() ? 0 : summary.key_groups.back().frames;
-    MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
-                             AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies));
+    std::optional<PreparedKeyFrame> prepared = ahead.Take(start);
+    const double seconds_waited = SecondsSince(analysis_start);
+    // After a key group of one frame the subject moves fast, and the next key groups likely
+    // hold one frame too: their bases are made meanwhile.
+    if (options.tuning.base_ahead && may_cut && previous_frames == 1 && !options.base_mesh) {
+      for (int next = start + 1; next <= start + kBasesAhead && next < end; ++next) {
+        if (ahead.Started(next)) continue;
+        MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, source.LoadFrame(next));
+        ahead.Start(next, std::move(views));
+      }
+    }
+    // Proxies made ahead serve this key group's analysis, which looks at the next frames.
+    for (int next = start + 1; next <= start + kBasesAhead; ++next) {
+      if (proxies.count(next)) continue;
+      if (std::optional<FrameProxy> proxy = ahead.TakeProxy(next)) {
+        proxies[next] = *std::move(proxy);
+      }
+    }
+    MESHVID_ASSIGN_OR_RETURN(
+        KeyGroupAnalysis analysis,
+        AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies, std::move(prepared)));
+    analysis.seconds_base += seconds_waited;
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_proxies += analysis.seconds_proxies;
     summary.seconds_segmentation +=

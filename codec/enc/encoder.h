@@ -35,6 +35,11 @@ struct EncoderTuning {
   /// against 38.76 dB), but samba 6-ring's accuracy falls from 0.64 to 0.93 mm (3/60 frames
   /// within 1.25x of the baseline's, from 59/60); so 1 by default.
   double base_voxel_scale = 1.0;
+  /// After a key group of one frame (the subject moving fast), the next two frames' proxies
+  /// and bases are made on threads of their own while this key group is analysed
+  /// (key_frame_ahead.h; bench/ENCODE.md: 9-26% faster on 2 cores where most key groups hold
+  /// a frame). The file is the same either way; false makes every base in turn.
+  bool base_ahead = true;
   /// A key frame's fused surface ends at most this many of the views' sample spacings past
   /// the edge of the data (SurfaceFusionOptions::max_extension_spacings; 0: where the coarse
   /// fusion's volume ends it).

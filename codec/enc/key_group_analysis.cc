@@ -679,8 +679,6 @@ constexpr int kFirstKeyGroupWindow = 8;
 
 }  // namespace
 
-/// The base of a key frame: fused from few points first (fast); redone from the fusion's
-/// default number of points when that fails or explains too little of the frame.
 StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
                                         const FrameProxy& proxy) {
@@ -705,10 +703,9 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
   return fit.unexplained_share < unexplained ? careful : base;
 }
 
-/// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
-/// `may_cut`, where it ends (the first frame its tracked base no longer explains).
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           int previous_frames, ProxyCache* cache) {
+                                           int previous_frames, ProxyCache* cache,
+                                           std::optional<PreparedKeyFrame> prepared) {
   const EncoderOptions& options = ctx.options;
   KeyGroupAnalysis analysis;
   KeyGroupSummary& summary = analysis.summary;
@@ -717,7 +714,10 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   auto stage_start = Clock::now();
   ProxyCache& proxies = *cache;
   proxies.erase(proxies.begin(), proxies.lower_bound(start));
-  {
+  if (prepared && (proxies.count(start) || prepared->proxy)) {
+    if (!proxies.count(start)) proxies[start] = *std::move(prepared->proxy);
+    analysis.base = std::move(prepared->base);
+  } else {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {
       MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(ctx, views));

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -90,12 +91,27 @@ struct KeyGroupAnalysis {
   double seconds_base = 0, seconds_proxies = 0;
 };
 
+/// The base of a key frame whose views are `views` and proxy `proxy`: fused from few points
+/// first (fast), redone from the fusion's default number of points when that fails or
+/// explains too little of the frame; or the user's base mesh fitted to the frame.
+StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
+                                        const std::vector<TriangleMesh>& views,
+                                        const FrameProxy& proxy);
+
+/// A key frame's proxy and base, made before its key group is analysed (key_frame_ahead.h).
+struct PreparedKeyFrame {
+  std::optional<FrameProxy> proxy;  ///< none when it was handed on before (ProxyCache)
+  TriangleMesh base;  ///< MakeKeyFrameBase's
+};
+
 /// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains), first
 /// looking at a few frames (more after a longer previous key group, `previous_frames`; 0: the
 /// first key group). `cache` keeps the proxies of frames the next key group may need.
+/// `prepared`, when given, is frame `start`'s proxy and base made already.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           int previous_frames, ProxyCache* cache);
+                                           int previous_frames, ProxyCache* cache,
+                                           std::optional<PreparedKeyFrame> prepared = {});
 
 }  // namespace meshvid
 

@@ -45,6 +45,7 @@ Status WithFlagNames(const Status& status) {
       {"window", "--window"},
       {"base_fusion_points", "--base-fusion-points"},
       {"base_voxel_scale", "--base-voxel-scale"},
+      {"base_ahead", "--base-ahead"},
       {"base_max_extension", "--base-extension"},
       {"key_group_threshold", "--key-group-threshold"},
       {"max_key_groups", "--max-key-groups"},
@@ -290,6 +291,10 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--base-fusion-points", o.tuning.base_fusion_points,
                   "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
                   "that explains under 75% of its frame is fused again from up to 150000)")
+      ->capture_default_str();
+  cmd->add_option("--base-ahead", o.tuning.base_ahead,
+                  "After a key group of one frame, make the next two frames' bases on threads "
+                  "of their own meanwhile (the same file; faster where the subject moves fast)")
       ->capture_default_str();
   cmd->add_option("--base-voxel-scale", o.tuning.base_voxel_scale,
                   "Voxel of a key frame's fusion, as a multiple of the size derived from the "

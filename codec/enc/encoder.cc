@@ -317,7 +317,15 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
     auto analysis_start = Clock::now();
     const int previous_frames = summary.key_groups.empty() ? 0 : summary.key_groups.back().frames;
-    std::optional<PreparedKeyFrame> prepared = ahead.Take(start);
+    // Proxies made ahead go to the cache: this key group's own, and the next frames' its
+    // analysis looks at.
+    for (int next = start; next <= start + kBasesAhead; ++next) {
+      if (proxies.count(next)) continue;
+      if (std::optional<FrameProxy> proxy = ahead.TakeProxy(next)) {
+        proxies[next] = *std::move(proxy);
+      }
+    }
+    std::optional<TriangleMesh> base_made_ahead = ahead.TakeBase(start);
     const double seconds_waited = SecondsSince(analysis_start);
     // After a key group of one frame the subject moves fast, and the next key groups likely
     // hold one frame too: their bases are made meanwhile.
@@ -328,16 +336,9 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
         ahead.Start(next, std::move(views));
       }
     }
-    // Proxies made ahead serve this key group's analysis, which looks at the next frames.
-    for (int next = start + 1; next <= start + kBasesAhead; ++next) {
-      if (proxies.count(next)) continue;
-      if (std::optional<FrameProxy> proxy = ahead.TakeProxy(next)) {
-        proxies[next] = *std::move(proxy);
-      }
-    }
-    MESHVID_ASSIGN_OR_RETURN(
-        KeyGroupAnalysis analysis,
-        AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies, std::move(prepared)));
+    MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
+                             AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies,
+                                             std::move(base_made_ahead)));
     analysis.seconds_base += seconds_waited;
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_proxies += analysis.seconds_proxies;

@@ -50,24 +50,17 @@ std::optional<FrameProxy> KeyFrameAhead::TakeProxy(int frame) {
   return std::move(proxy).value();
 }
 
-std::optional<PreparedKeyFrame> KeyFrameAhead::Take(int frame) {
+std::optional<TriangleMesh> KeyFrameAhead::TakeBase(int frame) {
   while (!made_.empty() && made_.begin()->first < frame) {
     made_.begin()->second.base.wait();
     made_.erase(made_.begin());
   }
   const auto found = made_.find(frame);
   if (found == made_.end()) return std::nullopt;
-  InMaking made = std::move(found->second);
+  StatusOr<TriangleMesh> base = found->second.base.get();
   made_.erase(found);
-  StatusOr<TriangleMesh> base = made.base.get();
   if (!base.ok()) return std::nullopt;
-  PreparedKeyFrame prepared;
-  prepared.base = std::move(base).value();
-  if (made.proxy.valid()) {
-    StatusOr<FrameProxy> proxy = made.proxy.get();
-    if (proxy.ok()) prepared.proxy = std::move(proxy).value();
-  }
-  return prepared;
+  return std::move(base).value();
 }
 
 }  // namespace meshvid

@@ -39,10 +39,11 @@ class KeyFrameAhead {
   /// its proxy was taken already or making it failed.
   std::optional<FrameProxy> TakeProxy(int frame);
 
-  /// Frame `frame`'s base, and its proxy unless TakeProxy took it, waited for; nothing when it
-  /// was not started, or when making it failed (the caller makes it again and meets the error
-  /// itself). Frames before it still in making are waited for and dropped; later ones go on.
-  std::optional<PreparedKeyFrame> Take(int frame);
+  /// Frame `frame`'s base, waited for; nothing when it was not started, or when making it
+  /// failed (the caller makes it again and meets the error itself). Take its proxy first
+  /// (TakeProxy): it is dropped with the frame. Frames before it still in making are waited
+  /// for and dropped; later ones go on.
+  std::optional<TriangleMesh> TakeBase(int frame);
 
  private:
   /// One frame in making: its proxy is ready first.

@@ -705,7 +705,7 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
                                            int previous_frames, ProxyCache* cache,
-                                           std::optional<PreparedKeyFrame> prepared) {
+                                           std::optional<TriangleMesh> base_made_ahead) {
   const EncoderOptions& options = ctx.options;
   KeyGroupAnalysis analysis;
   KeyGroupSummary& summary = analysis.summary;
@@ -714,9 +714,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   auto stage_start = Clock::now();
   ProxyCache& proxies = *cache;
   proxies.erase(proxies.begin(), proxies.lower_bound(start));
-  if (prepared && (proxies.count(start) || prepared->proxy)) {
-    if (!proxies.count(start)) proxies[start] = *std::move(prepared->proxy);
-    analysis.base = std::move(prepared->base);
+  if (base_made_ahead && proxies.count(start)) {
+    analysis.base = *std::move(base_made_ahead);
   } else {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
     if (!proxies.count(start)) {

@@ -98,20 +98,15 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
                                         const FrameProxy& proxy);
 
-/// A key frame's proxy and base, made before its key group is analysed (key_frame_ahead.h).
-struct PreparedKeyFrame {
-  std::optional<FrameProxy> proxy;  ///< none when it was handed on before (ProxyCache)
-  TriangleMesh base;  ///< MakeKeyFrameBase's
-};
-
 /// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains), first
 /// looking at a few frames (more after a longer previous key group, `previous_frames`; 0: the
 /// first key group). `cache` keeps the proxies of frames the next key group may need.
-/// `prepared`, when given, is frame `start`'s proxy and base made already.
+/// `base_made_ahead`, when given, is frame `start`'s base (MakeKeyFrameBase's, made on another
+/// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
                                            int previous_frames, ProxyCache* cache,
-                                           std::optional<PreparedKeyFrame> prepared = {});
+                                           std::optional<TriangleMesh> base_made_ahead = {});
 
 }  // namespace meshvid
 

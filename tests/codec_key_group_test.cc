@@ -133,28 +133,32 @@ TEST(DataFit, CountsPointsBeyondTheRepresentableDistance) {
   const DataFit stray = MeasureDataFit(thrown, points, 0.05f, 0.5f);
   EXPECT_NEAR(stray.stray_share, 0.25, 1e-9);
   EXPECT_NEAR(stray.farthest_from_data, 4.0, 1e-3);
-  EXPECT_FALSE(StillExplains(fit, stray, 0.1));
-  // However small its share, a piece thrown farther than the stray distance ends the group.
-  EXPECT_FALSE(StillExplains(fit, stray, 0.3));
+  EXPECT_FALSE(StillExplains(fit, stray, 0.1, 0.5));
+  // However small its share, a piece thrown farther from the data than the key frame's
+  // farthest by more than the farthest growth ends the group.
+  EXPECT_FALSE(StillExplains(fit, stray, 0.3, 0.5));
   const std::vector<Eigen::Vector3f> near = {{0, 0, 0}, {1, 0, 0}, {1.4f, 0, 0}, {0.2f, 0, 0}};
   const DataFit slightly = MeasureDataFit(near, points, 0.05f, 0.5f);
   EXPECT_NEAR(slightly.stray_share, 0, 1e-9);
-  EXPECT_TRUE(StillExplains(fit, slightly, 0.02));
-  EXPECT_TRUE(StillExplains(fit, fit, 0));
+  EXPECT_TRUE(StillExplains(fit, slightly, 0.02, 0.5));
+  // Nearer than the stray distance, it still ends the group past a smaller farthest growth.
+  EXPECT_NEAR(slightly.farthest_from_data, 0.4, 1e-3);
+  EXPECT_FALSE(StillExplains(fit, slightly, 0.02, 0.3));
+  EXPECT_TRUE(StillExplains(fit, fit, 0, 0.5));
   DataFit worse = fit;
   worse.unexplained_share += 0.1;
-  EXPECT_FALSE(StillExplains(fit, worse, 0.05));
-  EXPECT_TRUE(StillExplains(fit, worse, 0.2));
-  EXPECT_TRUE(StillExplains(fit, DataFit{}, 0));  // no data: nothing contradicts the motion
+  EXPECT_FALSE(StillExplains(fit, worse, 0.05, 0.5));
+  EXPECT_TRUE(StillExplains(fit, worse, 0.2, 0.5));
+  EXPECT_TRUE(StillExplains(fit, DataFit{}, 0, 0.5));  // no data: nothing contradicts the motion
   // A key frame whose base missed most of its data excuses at most 25% after it.
   DataFit failed_fusion = fit;
   failed_fusion.unexplained_share = 0.9;
-  EXPECT_FALSE(StillExplains(failed_fusion, failed_fusion, 0.02));
+  EXPECT_FALSE(StillExplains(failed_fusion, failed_fusion, 0.02, 0.5));
   // Surface in space a camera saw through counts as the unexplained data does.
   DataFit seen_through = fit;
   seen_through.seen_through_share = 0.04;
-  EXPECT_FALSE(StillExplains(fit, seen_through, 0.02));
-  EXPECT_TRUE(StillExplains(fit, seen_through, 0.05));
+  EXPECT_FALSE(StillExplains(fit, seen_through, 0.02, 0.5));
+  EXPECT_TRUE(StillExplains(fit, seen_through, 0.05, 0.5));
 }
 
 TEST(DataFit, WithNormalsSamplesMayBeSparserThanTheDistance) {
@@ -291,13 +295,15 @@ TEST(KeyGroups, ASheetWhoseEdgeRecedesEndsTheKeyGroupWhereACameraSeesPastIt) {
   ASSERT_TRUE(source.ok()) << source.status().ToString();
   EncoderOptions options;
   options.base_vertices = 400;
+  // The rim also lies ever farther from the data (below); here only the shares' rules judge.
+  options.tuning.farthest_growth = 1;
   auto encode = [&](const MemoryFrameSource& frames) {
     auto summary = EncodeCapture(
         frames, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
     EXPECT_TRUE(summary.ok()) << summary.status().ToString();
     return summary.ok() ? summary->key_groups.size() : 0;
   };
-  EXPECT_EQ(encode(*source), 1u);  // without cameras nothing contradicts the base
+  EXPECT_EQ(encode(*source), 1u);  // without cameras neither share contradicts the base
   source->set_view_cameras({testing::CameraLookingAtOrigin({0, 0, 1}, 200, 150)});
   StatusOr<EncodeSummary> summary = EncodeCapture(
       *source, [](std::span<const std::uint8_t>) { return Status::Ok(); }, options);
@@ -310,6 +316,58 @@ TEST(KeyGroups, ASheetWhoseEdgeRecedesEndsTheKeyGroupWhereACameraSeesPastIt) {
   EXPECT_LE(with_cameras, 3u);
   options.tuning.seen_free_space = false;
   EXPECT_EQ(encode(*source), 1u);
+  // At the default farthest growth (4 displacement ranges, 11 mm here), the rim left past the
+  // data's receding edge ends the key group without cameras too.
+  options.tuning.farthest_growth = 0;
+  EXPECT_GE(encode(*source), 2u);
+}
+
+TEST(KeyGroups, SurfaceLeftFarFromEveryDataPointEndsTheKeyGroup) {
+  // An ellipsoid with a bump on top (a sphere 0.14 across, 0.12 above the ellipsoid) that is
+  // gone from the data from frame 3 on. Nothing contradicts the tracked base's bump (every
+  // point lies on it, no camera sees past it, and its share is small), but it lies farther
+  // from every data point than the displacements reach.
+  const TriangleMesh sphere = testing::LatLongSphere(32, 64);
+  std::vector<TriangleMesh> frames;
+  for (int f = 0; f < 6; ++f) {
+    TriangleMesh body = sphere;
+    for (auto& p : body.positions) p = p.cwiseProduct(Eigen::Vector3f(0.6f, 0.25f, 0.25f));
+    body.normals.clear();
+    TriangleMesh frame;
+    AppendMesh(body, &frame);
+    if (f < 3) {
+      TriangleMesh bump = sphere;
+      for (auto& p : bump.positions) p = 0.07f * p + Eigen::Vector3f(0, 0.3f, 0);
+      bump.normals.clear();
+      AppendMesh(bump, &frame);
+    }
+    frames.push_back(std::move(frame));
+  }
+  EncoderOptions options = TestOptions();
+  // Every view vertex a data point: the usual 5% leave points 0.1 apart on these spheres, as
+  // far as the bump reaches.
+  options.tuning.proxy_fraction = 1;
+  // Dense points resolve a displacement range of 1% of the diagonal (0.018): the farthest
+  // growth allowed is 4 of them by default, 0.072.
+  options.tuning.detail_max_distance = 0.018;
+  // The shares' rules lenient (the bump's surface is 2% of the base's), so that only the
+  // farthest surface's growth can end the key group.
+  options.key_group_threshold = 0.05;
+  const Encoded encoded = Encode(frames, options);
+  ASSERT_EQ(encoded.summary.key_groups.size(), 2u);
+  EXPECT_EQ(encoded.summary.key_groups[1].first_frame, 3);
+  // Allowed more growth than the bump's, the bump stays.
+  options.tuning.farthest_growth = 0.2;
+  const Encoded kept = Encode(frames, options);
+  ASSERT_EQ(kept.summary.key_groups.size(), 1u);
+  const std::vector<double> cut_errors = DecodedErrors(encoded.bytes, frames);
+  const std::vector<double> kept_errors = DecodedErrors(kept.bytes, frames);
+  ASSERT_EQ(cut_errors.size(), frames.size());
+  ASSERT_EQ(kept_errors.size(), frames.size());
+  for (std::size_t f = 3; f < frames.size(); ++f) {
+    EXPECT_LT(cut_errors[f], 0.01) << "frame " << f;
+    EXPECT_GT(kept_errors[f], 2 * cut_errors[f]) << "frame " << f;
+  }
 }
 
 TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {

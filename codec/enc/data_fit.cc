@@ -114,7 +114,6 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
       });
   fit.stray_share = double(strays.count) / double(surface_samples.size());
   fit.farthest_from_data = std::sqrt(double(strays.farthest_squared));
-  fit.stray_distance = stray_distance;
   return fit;
 }
 
@@ -131,7 +130,8 @@ std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
   return reach;
 }
 
-bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold) {
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold,
+                   double farthest_growth) {
   if (frame.points == 0) return true;
   return frame.unexplained_share <=
              std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold &&
@@ -139,7 +139,7 @@ bool StillExplains(const DataFit& key_frame, const DataFit& frame, double thresh
              std::min(key_frame.stray_share, kMostUnexplainedAtKeyFrame) + threshold &&
          frame.seen_through_share <=
              std::min(key_frame.seen_through_share, kMostUnexplainedAtKeyFrame) + threshold &&
-         frame.farthest_from_data <= key_frame.farthest_from_data + frame.stray_distance;
+         frame.farthest_from_data <= key_frame.farthest_from_data + farthest_growth;
 }
 
 }  // namespace meshvid

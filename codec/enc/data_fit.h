@@ -24,8 +24,6 @@ struct DataFit {
   double stray_share = 0;
   /// The farthest any surface sample is from the data (0 without data).
   double farthest_from_data = 0;
-  /// The stray distance this fit was measured with.
-  double stray_distance = 0;
   /// Share of the surface samples some camera can judge (SeenFreeSpace::Judge) that lie in
   /// space a camera saw through, farther in front of what it saw than a displacement reaches
   /// (0 without cameras): a sheet's tracked surface running past its moving edge.
@@ -63,9 +61,10 @@ inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 /// frame's (where the base was fused from the data itself), counted as at most
 /// kMostUnexplainedAtKeyFrame (a key frame whose fusion failed does not excuse the frames
 /// after it); and no part of the surface is farther from the data than the key frame's
-/// farthest plus the stray distance (a patch the motion threw away, however small). A frame
+/// farthest plus `farthest_growth` (a patch the motion threw away, however small). A frame
 /// without data is explained (nothing contradicts the motion).
-bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold);
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold,
+                   double farthest_growth);
 
 }  // namespace meshvid
 

@@ -34,6 +34,9 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   const bool deforming = o.tuning.deformation_tracking;
   l.base_max_edge = pick(o.tuning.base_max_edge, deforming ? 0.03 : 0);
   l.proxy_max_edge = pick(o.tuning.proxy_max_edge, deforming ? 0.04 : 0);
+  l.farthest_growth = o.tuning.farthest_growth > 0 ? static_cast<float>(o.tuning.farthest_growth)
+                      : deforming ? l.max_distance
+                                  : kSegmentationFarthestGrowth * l.detail_max_distance;
   return l;
 }
 
@@ -162,6 +165,7 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.tuning.max_segments < 1 || o.tuning.max_segments > 65535) {
     return bad("tuning.max_segments must be in 1..65535");
   }
+  if (o.tuning.farthest_growth < 0) return bad("tuning.farthest_growth must not be negative");
   if (o.tuning.max_distance < 0 || o.tuning.tolerance < 0 || o.tuning.detail_max_distance < 0 ||
       o.tuning.outlier_distance < 0 || o.tuning.base_max_error < 0 ||
       o.tuning.reacquire_max_distance < 0) {

@@ -229,7 +229,19 @@ struct EncoderTuning {
   /// Frames a key group's segmentation analyses jointly before the fit decides where it
   /// ends; past them its segments are tracked frame by frame while they explain the data.
   int key_group_window = 48;
+  /// How much farther from every data point than at the key frame any part of the tracked
+  /// surface may lie before a new key group starts: a piece the motion threw where no view
+  /// contradicts it, however small its share (0: by tracker, kSegmentationFarthestGrowth
+  /// times detail_max_distance for the segmentation, max_distance with deformation_tracking).
+  double farthest_growth = 0;
 };
+
+/// The farthest growth (EncoderTuning::farthest_growth) of the piecewise-rigid segmentation,
+/// in displacement ranges (tuning.detail_max_distance). Measured over every shared pair
+/// (bench/ENCODE.md): 4 ends samba 3-arc's key group at a flap 2.8x per-frame fusion's error
+/// and changes nothing else; 2-3 also end the cloth's only tracked frames, more complete than
+/// a fresh base (0.03 dB less D1); the correspondence distance (8%) let the flap through.
+inline constexpr float kSegmentationFarthestGrowth = 4;
 
 /// The key-group threshold (EncoderOptions::key_group_threshold) of the piecewise-rigid
 /// segmentation: measured over 60 frames of samba on the 3-view arc (bench/RESULTS.md).

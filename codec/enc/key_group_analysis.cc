@@ -78,6 +78,13 @@ double KeyGroupThreshold(const EncoderOptions& options) {
                                              : kSegmentationKeyGroupThreshold;
 }
 
+/// Whether a tracked frame's fit still explains its data against the key frame's, by the
+/// key-group rule in force (StillExplains with the threshold and the farthest growth).
+bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
+  return StillExplains(key_fit, fit, KeyGroupThreshold(ctx.options),
+                       ctx.lengths.farthest_growth);
+}
+
 /// The fit of a frame's points to its unposed base (sampled on lattice level <= 2).
 StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                             const std::vector<Eigen::Vector3f>& points, float distance) {
@@ -620,8 +627,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
                             std::vector<RigidTransform>* ahead_pose,
                             DeformationTrackStats* ahead_stats) {
-        if (may_cut && !StillExplains(key_fit, meter.Measure(pose, proxy),
-                                      KeyGroupThreshold(options))) {
+        if (may_cut && !TrackedFrameExplained(ctx, key_fit, meter.Measure(pose, proxy))) {
           return std::numeric_limits<double>::infinity();
         }
         *ahead_pose = tracker.Track(ahead, pose, tracks.back(), ahead_stats);
@@ -643,7 +649,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     }
     if (may_cut) {
       const DataFit fit = meter.Measure(next, proxy);
-      if (!StillExplains(key_fit, fit, KeyGroupThreshold(options))) {
+      if (!TrackedFrameExplained(ctx, key_fit, fit)) {
         summary.cut_unexplained = fit.unexplained_share;
         summary.cut_seen_through = fit.seen_through_share;
         break;
@@ -752,7 +758,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   std::optional<FitMeter> meter;
   auto explained = [&](int t, const FrameProxy& frame) {
     const DataFit fit = meter->Measure(tracks[t - start], frame);
-    if (!StillExplains(key_fit, fit, KeyGroupThreshold(options))) {
+    if (!TrackedFrameExplained(ctx, key_fit, fit)) {
       summary.cut_unexplained = fit.unexplained_share;
       summary.cut_seen_through = fit.seen_through_share;
       return false;

@@ -36,7 +36,7 @@ struct Lengths {
   float scale = 1;
   float max_distance = 0, tolerance = 0, detail_max_distance = 0, outlier_distance = 0,
         base_max_error = 0, reacquire_max_distance = 0, node_spacing = 0, base_max_edge = 0,
-        proxy_max_edge = 0;
+        proxy_max_edge = 0, farthest_growth = 0;
 };
 
 /// A frame's views decimated into one correspondence target, and the target's vertices (the

@@ -50,6 +50,7 @@ Status WithFlagNames(const Status& status) {
       {"key_group_threshold", "--key-group-threshold"},
       {"max_key_groups", "--max-key-groups"},
       {"key_group_window", "--key-group-window"},
+      {"farthest_growth", "--farthest-growth"},
       {"base_vertices", "--base-vertices"},
       {"base_max_error", "--base-max-error"},
       {"base_max_normal_deviation_degrees", "--base-max-normal-deviation"},
@@ -323,6 +324,12 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--key-group-window", o.tuning.key_group_window,
                   "Frames a key group's segmentation analyses jointly before the fit decides "
                   "where it ends; past them its segments are tracked frame by frame")
+      ->capture_default_str();
+  cmd->add_option("--farthest-growth", o.tuning.farthest_growth,
+                  "Start a new key group where some part of the tracked surface lies farther "
+                  "from every captured point than at the key frame by more than this, in data "
+                  "units: a piece the motion threw where no view contradicts it (0: 4 times the "
+                  "displacement range, --detail-distance; with --deform, --max-distance)")
       ->capture_default_str();
   cmd->add_option("--base-mesh", args->base_mesh,
                   "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "

@@ -251,7 +251,12 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
   for (const auto& group : summary["key_groups"]) {
     EXPECT_GE(group["rigid_groups"].get<int>(), 1);
     EXPECT_LT(group["rigid_groups"].get<int>(), group["segments"].get<int>());
+    // The figures of the rule that ended the key group, all -1 where the capture ended it.
+    const bool ended_by_capture = group["cut_unexplained"].get<double>() == -1;
+    EXPECT_EQ(group["cut_seen_through"].get<double>() == -1, ended_by_capture);
+    EXPECT_EQ(group["cut_farthest_growth"].get<double>() == -1, ended_by_capture);
   }
+  EXPECT_EQ(summary["key_groups"].back()["cut_farthest_growth"].get<double>(), -1);
   // The arm bends at the elbow and turns at the wrist: its rigid pieces are the upper arm,
   // the forearm and the hand. The same code gives other key groups on another machine (not
   // traced; the simulator's and the encoder's ray casts and parallel sums are the likely

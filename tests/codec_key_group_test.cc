@@ -356,6 +356,12 @@ TEST(KeyGroups, SurfaceLeftFarFromEveryDataPointEndsTheKeyGroup) {
   const Encoded encoded = Encode(frames, options);
   ASSERT_EQ(encoded.summary.key_groups.size(), 2u);
   EXPECT_EQ(encoded.summary.key_groups[1].first_frame, 3);
+  // The summary says which rule ended it: the farthest surface grew past the allowance (the
+  // bump, about 0.2 from the ellipsoid's top, against its own points at the key frame), while
+  // the last key group was ended by the capture.
+  EXPECT_GT(encoded.summary.key_groups[0].cut_farthest_growth, 0.072);
+  EXPECT_LT(encoded.summary.key_groups[0].cut_unexplained, 0.05);
+  EXPECT_EQ(encoded.summary.key_groups[1].cut_farthest_growth, -1);
   // Allowed more growth than the bump's, the bump stays.
   options.tuning.farthest_growth = 0.2;
   const Encoded kept = Encode(frames, options);

@@ -322,6 +322,10 @@ struct KeyGroupSummary {
   /// At that frame, the share of the tracked surface lying where a camera saw through
   /// (DataFit::seen_through_share), or -1 as above.
   double cut_seen_through = -1;
+  /// At that frame, how much farther the tracked surface's farthest part lies from every data
+  /// point than at the key frame (DataFit::farthest_from_data; data units; the rule of
+  /// EncoderTuning::farthest_growth), or -1 as above.
+  double cut_farthest_growth = -1;
 };
 
 /// What an encode produced, for the summary a tool prints.

@@ -560,7 +560,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   const DataFit key_fit = meter.Measure(tracks[0], key_frame);
   summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
   summary.key_frame_seen_through = key_fit.seen_through_share;
-  summary.cut_unexplained = summary.cut_seen_through = -1;
+  summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
   std::vector<char> observed(base.vertex_count(), 0);
   if (key_frame.target) {
     ObserveVertices(ctx, base, analysis->motion, *key_frame.target, tracks[0], &observed);
@@ -652,6 +652,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       if (!TrackedFrameExplained(ctx, key_fit, fit)) {
         summary.cut_unexplained = fit.unexplained_share;
         summary.cut_seen_through = fit.seen_through_share;
+        summary.cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
         break;
       }
       summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
@@ -761,6 +762,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     if (!TrackedFrameExplained(ctx, key_fit, fit)) {
       summary.cut_unexplained = fit.unexplained_share;
       summary.cut_seen_through = fit.seen_through_share;
+      summary.cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
       return false;
     }
     summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
@@ -789,7 +791,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.key_frame_seen_through = key_fit.seen_through_share;
     summary.worst_unexplained = key_fit.unexplained_share;
-    summary.cut_unexplained = summary.cut_seen_through = -1;
+    summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
     tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;
     for (int t = start + 1; t < stop; ++t) {
@@ -799,7 +801,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
         tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t],
                                        std::span(tracks.data(), std::size_t(t - start)));
         if (explained(t, proxies[t])) {
-          summary.cut_unexplained = summary.cut_seen_through = -1;
+          summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
           continue;
         }
       }

@@ -155,7 +155,8 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"key_frame_seen_through", k.key_frame_seen_through},
                                {"worst_unexplained", k.worst_unexplained},
                                {"cut_unexplained", k.cut_unexplained},
-                               {"cut_seen_through", k.cut_seen_through}});
+                               {"cut_seen_through", k.cut_seen_through},
+                               {"cut_farthest_growth", k.cut_farthest_growth}});
   }
   j["scale"] = s.scale;
   j["tolerance"] = s.tolerance;

@@ -34,6 +34,8 @@ TEST(BenchCliTest, BadArgumentsAreUsageErrorsWithAMessage) {
       {"bench --sequences cloth --bits 0,8" + out, 2, "--bits '0,8'"},
       {"bench --sequences cloth --samples 10" + out, 2, "--samples must be at least 1000"},
       {"bench --sequences cloth --frames -3" + out, 2, "--frames"},
+      {"bench --sequences cloth --encode-args '--quality 20'" + out, 2,
+       "--quality is set by the bench itself"},
       {"bench --sequences cloth --report-only" + out, 1, "no bench record"},
       {"bench-baseline x.json -o y --bits 8,99", 2, "--bits '8,99'"},
       {"bench-baseline \"" + dir.File("missing.json") + "\" -o y", 1, "missing.json"},

@@ -130,6 +130,31 @@ StatusOr<std::vector<BenchRig>> ParseRigList(const std::string& text) {
   return rigs;
 }
 
+StatusOr<std::vector<std::string>> ParseEncodeArgs(const std::string& text) {
+  static const char* const kSetByTheBench[] = {"-o",     "--out",          "--codec",
+                                               "--quality", "--summary-json", "--frames",
+                                               "-q",     "--quiet"};
+  std::vector<std::string> args;
+  std::size_t start = 0;
+  while (true) {
+    start = text.find_first_not_of(" \t\n", start);
+    if (start == std::string::npos) break;
+    const std::size_t end = std::min(text.find_first_of(" \t\n", start), text.size());
+    args.push_back(text.substr(start, end - start));
+    start = end;
+  }
+  for (const std::string& arg : args) {
+    const std::string name = arg.substr(0, arg.find('='));
+    for (const char* reserved : kSetByTheBench) {
+      if (name == reserved) {
+        return InvalidArgumentError("--encode-args '" + text + "': " + name +
+                                    " is set by the bench itself for every encode");
+      }
+    }
+  }
+  return args;
+}
+
 std::string DefaultSharedDataDir() {
   if (const char* env = std::getenv("MESHVID_SHARED_DATA"); env != nullptr && *env != '\0') {
     return env;

@@ -269,6 +269,7 @@ std::string BenchRecordToJson(const BenchRecord& r) {
   j["reference"] = r.reference;
   j["date"] = r.date;
   j["run_key"] = r.run_key;
+  if (!r.encode_args.empty()) j["encode_args"] = r.encode_args;
   j["machine"] = {{"cpu_model", r.machine.cpu_model},
                   {"cores", r.machine.cores},
                   {"ram_gb", r.machine.ram_gb},
@@ -323,6 +324,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
     r.reference = j.value("reference", "");
     r.date = j.value("date", "");
     r.run_key = j.value("run_key", "");
+    r.encode_args = j.value("encode_args", "");
     if (j.contains("machine")) {
       const json& m = j.at("machine");
       r.machine.cpu_model = m.value("cpu_model", "");

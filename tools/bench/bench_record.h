@@ -161,8 +161,11 @@ struct BenchRecord {
   std::string reference;  ///< the ground truth every point is evaluated against
   std::string date;       ///< UTC time of the last update, ISO 8601
   /// The settings a resumed run must share to reuse this record's steps (frames, samples,
-  /// ground truth, rig).
+  /// ground truth, rig, the encoder's extra arguments).
   std::string run_key;
+  /// Extra arguments every meshvid encode of this record was given (BenchOptions::encode_args,
+  /// joined by spaces; "" for the encoder's defaults).
+  std::string encode_args;
   MachineInfo machine;
   bool simulate_ok = false;
   std::string simulate_error;

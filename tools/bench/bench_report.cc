@@ -172,6 +172,9 @@ std::string RecordSection(const BenchRecord& record, const ReportOptions& option
         std::to_string(record.eval_samples) + " samples per surface; measured " + record.date +
         " (peak memory floor: the bench process's own " +
         Fmt("%.0f", record.bench_process_peak_mb) + " MB). Record: `" + name + ".json`.\n\n";
+  if (!record.encode_args.empty()) {
+    md += "Every meshvid encode of this record was given `" + record.encode_args + "`.\n\n";
+  }
   if (!record.simulate_ok) {
     return md + "**Simulation failed**, nothing else ran: " + record.simulate_error + "\n\n";
   }

@@ -48,6 +48,19 @@ bool Finished(const BenchPoint* point) {
   return point != nullptr && point->ok && HasMeanOfFramesPsnr(*point) && HasFrameFigures(*point);
 }
 
+/// Arguments joined by single spaces ("" for none).
+std::string JoinArgs(const std::vector<std::string>& args) {
+  std::string text;
+  for (const std::string& arg : args) text += (text.empty() ? "" : " ") + arg;
+  return text;
+}
+
+/// The run key's part for the encoder's extra arguments: nothing without them, so the keys of
+/// records made before the option existed still match.
+std::string EncodeArgsKey(const std::vector<std::string>& args) {
+  return args.empty() ? std::string() : ";encode_args=" + JoinArgs(args);
+}
+
 std::string JoinInts(const std::vector<int>& values) {
   std::string text;
   for (int v : values) text += (text.empty() ? "" : ",") + std::to_string(v);
@@ -186,7 +199,8 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   const std::string run_key = "gt=" + sequence.ground_truth + ";rig=" + rig.name() +
                               ";frames=" + std::to_string(options_.frames) +
                               ";samples=" + std::to_string(options_.eval_samples) +
-                              ";azimuth=" + Format("%g", sequence.azimuth_deg);
+                              ";azimuth=" + Format("%g", sequence.azimuth_deg) +
+                              EncodeArgsKey(options_.encode_args);
   if (options_.resume && fs::exists(record_path_)) {
     StatusOr<BenchRecord> previous = ReadBenchRecord(record_path_);
     if (previous.ok() && previous->run_key == run_key) {
@@ -222,6 +236,7 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   record.layout = rig.layout;
   record.eval_samples = static_cast<int>(options_.eval_samples);
   record.run_key = run_key;
+  record.encode_args = JoinArgs(options_.encode_args);
   record.machine = machine_;
 
   MESHVID_RETURN_IF_ERROR(Simulate(sequence, rig, record));
@@ -486,17 +501,13 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
     encode.codec = codec;
     encode.quality = quality;
     encode.file = file;
-    const std::vector<std::string> args = {"encode",
-                                           record.capture,
-                                           "-o",
-                                           file,
-                                           "--codec",
-                                           codec,
-                                           "--quality",
-                                           std::to_string(quality),
-                                           "--summary-json",
-                                           dir_ + "/" + stem + ".summary.json",
-                                           "-q"};
+    std::vector<std::string> args = {"encode",    record.capture,
+                                     "-o",        file,
+                                     "--codec",   codec,
+                                     "--quality", std::to_string(quality),
+                                     "--summary-json", dir_ + "/" + stem + ".summary.json"};
+    args.insert(args.end(), options_.encode_args.begin(), options_.encode_args.end());
+    args.push_back("-q");
     encode.command = Command(args);
     // A new file: what was measured on the old one (a resumed run whose .mvid is gone, say)
     // is measured again.

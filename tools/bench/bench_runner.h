@@ -55,6 +55,10 @@ struct BenchOptions {
   bool keep_work = false;  ///< keep the baseline's decoded frames after evaluation
   /// Draw each record's still (BenchStillName) with `meshvid render` after its points.
   bool draw_stills = true;
+  /// Extra arguments of every `meshvid encode` (e.g. {"--deform", "1"}): a setting measured
+  /// against the baseline as the default encoder is. Part of each record's run key, so a
+  /// record made with other extra arguments is started afresh (give such runs their own -o).
+  std::vector<std::string> encode_args;
 };
 
 /// How a run reports to its caller (the CLI draws and prints these).
@@ -78,6 +82,11 @@ StatusOr<std::vector<int>> ParseIntList(const std::string& text, int lo, int hi,
 
 /// Parses "3-arc,6-ring" (VIEWS-LAYOUT items, layout arc or ring).
 StatusOr<std::vector<BenchRig>> ParseRigList(const std::string& text);
+
+/// Splits `--encode-args` at white space into the extra arguments of every `meshvid encode`.
+/// Fails naming an argument the bench sets itself (the output, codec, quality, summary,
+/// frames, quiet) or a capture given as a second positional argument.
+StatusOr<std::vector<std::string>> ParseEncodeArgs(const std::string& text);
 
 /// The shared data folder: $MESHVID_SHARED_DATA, else ../shared/data if it exists, else the
 /// one beside the source tree the program was built from; "" if none exists.

@@ -36,6 +36,7 @@ struct BenchArguments {
   std::string codecs = "hevc,av1";
   std::string qualities = "20,40,60,80";
   std::string bits = "8,10,12,14";
+  std::string encode_args;
   int lossless_quality = 100;
   bool no_lossless = false;
   int frames = -1;    ///< -1: not given
@@ -64,6 +65,7 @@ std::string CommandLine(const BenchArguments& a, const BenchOptions& o) {
   if (a.qualities != "20,40,60,80") argv.insert(argv.end(), {"--qualities", a.qualities});
   if (a.bits != "8,10,12,14") argv.insert(argv.end(), {"--bits", a.bits});
   if (o.lossless_quality < 0) argv.push_back("--no-lossless");
+  if (!a.encode_args.empty()) argv.insert(argv.end(), {"--encode-args", a.encode_args});
   return ShellQuoteCommand(argv);
 }
 
@@ -100,6 +102,7 @@ Status BuildOptions(const BenchArguments& a, BenchOptions* o) {
   o->frames = a.frames_given ? a.frames : (a.quick ? 10 : 0);
   o->eval_samples =
       a.samples_given ? static_cast<std::size_t>(a.samples) : (a.quick ? 50000 : 200000);
+  MESHVID_ASSIGN_OR_RETURN(o->encode_args, ParseEncodeArgs(a.encode_args));
   o->lossless_quality = a.no_lossless ? -1 : a.lossless_quality;
   o->results_dir = a.out;
   o->work_dir = a.work.empty() ? a.out + "/tmp" : a.work;
@@ -320,6 +323,11 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
                   "Quality of the one FFV1 (lossless reference) point")
       ->capture_default_str();
   cmd->add_flag("--no-lossless", args->no_lossless, "Skip the FFV1 reference point");
+  cmd->add_option("--encode-args", args->encode_args,
+                  "Extra arguments of every meshvid encode, split at spaces, e.g. '--deform 1':\n"
+                  "a setting measured against the baseline as the defaults are. A record made\n"
+                  "with other extra arguments starts afresh: give such a run its own -o and\n"
+                  "--report (e.g. -o bench/results-deform --report bench/RESULTS-deform.md)");
   cmd->add_flag("--fresh", args->fresh, "Redo every step instead of resuming");
   cmd->add_flag("--keep-work", args->keep_work,
                 "Keep the baseline's decoded frames (large) after evaluating them");

@@ -131,9 +131,8 @@ StatusOr<std::vector<BenchRig>> ParseRigList(const std::string& text) {
 }
 
 StatusOr<std::vector<std::string>> ParseEncodeArgs(const std::string& text) {
-  static const char* const kSetByTheBench[] = {"-o",     "--out",          "--codec",
-                                               "--quality", "--summary-json", "--frames",
-                                               "-q",     "--quiet"};
+  static const char* const kSetByTheBench[] = {
+      "-o", "--out", "--codec", "--quality", "--summary-json", "--frames", "-q", "--quiet"};
   std::vector<std::string> args;
   std::size_t start = 0;
   while (true) {

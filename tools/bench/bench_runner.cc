@@ -501,10 +501,10 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
     encode.codec = codec;
     encode.quality = quality;
     encode.file = file;
-    std::vector<std::string> args = {"encode",    record.capture,
-                                     "-o",        file,
-                                     "--codec",   codec,
-                                     "--quality", std::to_string(quality),
+    std::vector<std::string> args = {"encode",         record.capture,
+                                     "-o",             file,
+                                     "--codec",        codec,
+                                     "--quality",      std::to_string(quality),
                                      "--summary-json", dir_ + "/" + stem + ".summary.json"};
     args.insert(args.end(), options_.encode_args.begin(), options_.encode_args.end());
     args.push_back("-q");

@@ -85,7 +85,7 @@ StatusOr<std::vector<BenchRig>> ParseRigList(const std::string& text);
 
 /// Splits `--encode-args` at white space into the extra arguments of every `meshvid encode`.
 /// Fails naming an argument the bench sets itself (the output, codec, quality, summary,
-/// frames, quiet) or a capture given as a second positional argument.
+/// frames, quiet).
 StatusOr<std::vector<std::string>> ParseEncodeArgs(const std::string& text);
 
 /// The shared data folder: $MESHVID_SHARED_DATA, else ../shared/data if it exists, else the

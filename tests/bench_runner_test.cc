@@ -425,7 +425,9 @@ TEST(BenchRunnerTest, ExtraEncodeArgumentsReachEveryEncodeAndAreKeptApart) {
   EXPECT_EQ(encodes, 2);  // q40 and the lossless point
   EXPECT_EQ((*records)[0].encode_args, "--deform 1");
   for (const BenchEncode& e : (*records)[0].encodes) {
-    if (e.method == kMethodMeshvid) EXPECT_NE(e.command.find("--deform 1"), std::string::npos);
+    if (e.method == kMethodMeshvid) {
+      EXPECT_NE(e.command.find("--deform 1"), std::string::npos) << e.command;
+    }
   }
   auto saved = ReadBenchRecord(bench.options.results_dir + "/fake-3-arc.json");
   ASSERT_TRUE(saved.ok()) << saved.status().ToString();

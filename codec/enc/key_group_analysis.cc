@@ -85,6 +85,19 @@ bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, con
                        ctx.lengths.farthest_growth);
 }
 
+/// Records in `summary` what ended its key group: the rules' figures of the tracked frame
+/// whose `fit` no longer explained its data, against the key frame's `key_fit`.
+void RecordCut(const DataFit& key_fit, const DataFit& fit, KeyGroupSummary* summary) {
+  summary->cut_unexplained = fit.unexplained_share;
+  summary->cut_seen_through = fit.seen_through_share;
+  summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+}
+
+/// Clears them (-1): no frame has ended the key group.
+void ClearCut(KeyGroupSummary* summary) {
+  summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth = -1;
+}
+
 /// The fit of a frame's points to its unposed base (sampled on lattice level <= 2).
 StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                             const std::vector<Eigen::Vector3f>& points, float distance) {
@@ -560,7 +573,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   const DataFit key_fit = meter.Measure(tracks[0], key_frame);
   summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
   summary.key_frame_seen_through = key_fit.seen_through_share;
-  summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
+  ClearCut(&summary);
   std::vector<char> observed(base.vertex_count(), 0);
   if (key_frame.target) {
     ObserveVertices(ctx, base, analysis->motion, *key_frame.target, tracks[0], &observed);
@@ -650,9 +663,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     if (may_cut) {
       const DataFit fit = meter.Measure(next, proxy);
       if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-        summary.cut_unexplained = fit.unexplained_share;
-        summary.cut_seen_through = fit.seen_through_share;
-        summary.cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+        RecordCut(key_fit, fit, &summary);
         break;
       }
       summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
@@ -760,9 +771,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   auto explained = [&](int t, const FrameProxy& frame) {
     const DataFit fit = meter->Measure(tracks[t - start], frame);
     if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-      summary.cut_unexplained = fit.unexplained_share;
-      summary.cut_seen_through = fit.seen_through_share;
-      summary.cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+      RecordCut(key_fit, fit, &summary);
       return false;
     }
     summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
@@ -791,7 +800,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.key_frame_seen_through = key_fit.seen_through_share;
     summary.worst_unexplained = key_fit.unexplained_share;
-    summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
+    ClearCut(&summary);
     tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;
     for (int t = start + 1; t < stop; ++t) {
@@ -801,7 +810,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
         tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxies[t],
                                        std::span(tracks.data(), std::size_t(t - start)));
         if (explained(t, proxies[t])) {
-          summary.cut_unexplained = summary.cut_seen_through = summary.cut_farthest_growth = -1;
+          ClearCut(&summary);
           continue;
         }
       }

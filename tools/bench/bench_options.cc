@@ -6,6 +6,7 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "tools/bench/bench_runner.h"
 #include "tools/sim/ground_truth.h"
@@ -134,14 +135,8 @@ StatusOr<std::vector<std::string>> ParseEncodeArgs(const std::string& text) {
   static const char* const kSetByTheBench[] = {
       "-o", "--out", "--codec", "--quality", "--summary-json", "--frames", "-q", "--quiet"};
   std::vector<std::string> args;
-  std::size_t start = 0;
-  while (true) {
-    start = text.find_first_not_of(" \t\n", start);
-    if (start == std::string::npos) break;
-    const std::size_t end = std::min(text.find_first_of(" \t\n", start), text.size());
-    args.push_back(text.substr(start, end - start));
-    start = end;
-  }
+  std::istringstream words(text);
+  for (std::string word; words >> word;) args.push_back(word);
   for (const std::string& arg : args) {
     const std::string name = arg.substr(0, arg.find('='));
     for (const char* reserved : kSetByTheBench) {

@@ -255,6 +255,8 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
     const bool ended_by_capture = group["cut_unexplained"].get<double>() == -1;
     EXPECT_EQ(group["cut_seen_through"].get<double>() == -1, ended_by_capture);
     EXPECT_EQ(group["cut_farthest_growth"].get<double>() == -1, ended_by_capture);
+    // Tracked forwards only (no --deform-backward): every key group starts at its key frame.
+    EXPECT_EQ(group["key_frame"].get<int>(), group["first_frame"].get<int>());
   }
   EXPECT_EQ(summary["key_groups"].back()["cut_farthest_growth"].get<double>(), -1);
   // The arm bends at the elbow and turns at the wrist: its rigid pieces are the upper arm,

@@ -93,6 +93,9 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("key_group_threshold must be in [0, 1] (or -1: automatic)");
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
+  if (o.tuning.deform_backward_frames < 0) {
+    return bad("tuning.deform_backward_frames must be >= 0");
+  }
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
   if (!(o.tuning.base_max_extension >= 0) || !std::isfinite(o.tuning.base_max_extension)) {
     return bad("tuning.base_max_extension must be finite and >= 0");
@@ -316,6 +319,9 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   std::size_t filled = 0, hits = 0, samples = 0;
   ProxyCache proxies;
   KeyFrameAhead ahead(ctx);
+  // A later key frame's base that did not serve (KeyGroupAnalysis::unused_base), and its frame.
+  std::optional<TriangleMesh> unused_base;
+  int unused_base_frame = -1;
   for (int start = first; start < end;) {
     const bool may_cut = options.max_key_groups == 0 ||
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
@@ -330,6 +336,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       }
     }
     std::optional<TriangleMesh> base_made_ahead = ahead.TakeBase(start);
+    if (!base_made_ahead && unused_base_frame == start) base_made_ahead = std::move(unused_base);
     const double seconds_waited = SecondsSince(analysis_start);
     // After a key group of one frame the subject moves fast, and the next key groups likely
     // hold one frame too: their bases are made meanwhile.
@@ -344,6 +351,10 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
                              AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies,
                                              std::move(base_made_ahead)));
     analysis.seconds_base += seconds_waited;
+    if (analysis.unused_base) {
+      unused_base = std::move(analysis.unused_base);
+      unused_base_frame = analysis.unused_base_frame;
+    }
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_proxies += analysis.seconds_proxies;
     summary.seconds_segmentation +=

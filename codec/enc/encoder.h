@@ -208,6 +208,12 @@ struct EncoderTuning {
   /// found again, 1.5-2.4x as far from the truth (accuracy RMS). Off by default: fidelity
   /// first.
   bool deform_reacquire = false;
+  /// With deformation_tracking, where a key group may be cut: its key frame is this many
+  /// frames after its first frame (or the capture's last), and the frames between are tracked
+  /// backwards from it, so a key group extends both ways from its key frame. Where a frame
+  /// between is lost, the key frame is the first frame after all (its later base was made in
+  /// vain). 0: every key group starts at its key frame. Measured in bench/DEFORM.md.
+  int deform_backward_frames = 0;
 
   // --- detail (docs/encoder-method.md section 4)
   /// Farthest hit along a sample normal, and the displacement range a key group must keep its
@@ -299,7 +305,10 @@ int QualityToQp(VideoCodec codec, int quality);
 
 /// One key group of an encode.
 struct KeyGroupSummary {
-  int first_frame = 0;          ///< the capture's frame number of its key frame
+  int first_frame = 0;          ///< the capture's frame number of its first frame
+  /// The capture's frame number of its key frame (whose fused views its base is): the first
+  /// frame, or a later one tracked backwards to it (EncoderTuning::deform_backward_frames).
+  int key_frame = 0;
   int frames = 0;
   std::size_t base_vertices = 0;
   int segments = 0;

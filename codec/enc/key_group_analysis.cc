@@ -526,11 +526,15 @@ struct PointsWithNormals {
 };
 
 /// The motion of a key group as an embedded deformation of its base (tuning.
-/// deformation_tracking): its nodes tracked frame by frame from the key frame at `start` while
-/// the posed base explains each frame's data (to the end of the capture unless `may_cut`).
-/// Fills the analysis' motion, tracks, frame count and node figures.
-Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int start,
-                             bool may_cut, ProxyCache* proxies, KeyGroupAnalysis* analysis) {
+/// deformation_tracking), fused from its key frame `key`: its nodes tracked frame by frame
+/// backwards from the key frame to the key group's first frame `first` (tuning.
+/// deform_backward_frames), then forwards while the posed base explains each frame's data (to
+/// the end of the capture unless `may_cut`). Fills the analysis' motion, tracks (from `first`
+/// on), frame count and node figures. The frame count is 0 when a frame between `first` and
+/// the key frame is not explained: the key frame cannot start at `first`.
+Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
+                             int key, bool may_cut, ProxyCache* proxies,
+                             KeyGroupAnalysis* analysis) {
   const EncoderOptions& options = ctx.options;
   const TriangleMesh& base = analysis->base;
   KeyGroupSummary& summary = analysis->summary;
@@ -541,6 +545,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   summary.segments = nodes;
   summary.patches = 0;
   summary.registered_share = 1;
+  summary.key_frame = key;
   DeformationTrackingOptions tracking;
   tracking.max_distance = ctx.lengths.max_distance;
   tracking.tolerance = ctx.seg.tolerance;
@@ -567,16 +572,15 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
                            RegularSubdivision::Create(base, std::min(options.levels, 2)));
   FitMeter meter(base, analysis->motion, lattice, ctx.lengths.detail_max_distance,
                  ctx.lengths.max_distance, /*judge_across=*/true);
-  auto& tracks = analysis->tracks;
-  tracks.assign(1, std::vector<RigidTransform>(nodes));
-  const FrameProxy& key_frame = (*proxies)[start];
-  const DataFit key_fit = meter.Measure(tracks[0], key_frame);
+  const std::vector<RigidTransform> identity(nodes);
+  const FrameProxy& key_frame = (*proxies)[key];
+  const DataFit key_fit = meter.Measure(identity, key_frame);
   summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
   summary.key_frame_seen_through = key_fit.seen_through_share;
   ClearCut(&summary);
   std::vector<char> observed(base.vertex_count(), 0);
   if (key_frame.target) {
-    ObserveVertices(ctx, base, analysis->motion, *key_frame.target, tracks[0], &observed);
+    ObserveVertices(ctx, base, analysis->motion, *key_frame.target, identity, &observed);
   }
   // What frame t is tracked to: the frame fused (closed where no view saw it, as a key
   // frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
@@ -603,79 +607,109 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     kept.positions = std::move(fused.positions);
     return TrackingData{kept.positions, kept.normals};
   };
-  // A frame's pose already tracked while looking ahead from the one before, and the lost
-  // parts its tracking found again.
-  std::optional<std::vector<RigidTransform>> looked_ahead;
-  int looked_ahead_reacquired = 0;
-  for (int t = start + 1; t < ctx.end; ++t) {
-    if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
-    proxies->erase(proxies->begin(), proxies->lower_bound(t));
-    fused_frames.erase(fused_frames.begin(), fused_frames.lower_bound(t));
-    MESHVID_ASSIGN_OR_RETURN(const TrackingData data, tracking_data(t));
-    const FrameProxy& proxy = (*proxies)[t];
-    const std::span<const RigidTransform> before =
-        tracks.size() >= 2 ? std::span<const RigidTransform>(tracks[tracks.size() - 2])
-                           : std::span<const RigidTransform>();
-    std::vector<RigidTransform> next;
-    DeformationTrackStats next_stats;
-    if (looked_ahead) {
-      next = *std::move(looked_ahead);
-      next_stats.reacquired = looked_ahead_reacquired;
-      looked_ahead.reset();
-    } else {
-      next = tracker.Track(data, tracks.back(), before, &next_stats);
-    }
-    if (tracks.size() == 1 && supple_tracker && t + 1 < ctx.end) {
-      // The second frame has no velocity to predict from. Solved stiff at first, a fast part
-      // moves as a whole; at the set rigidity throughout, a waving sheet bends from the start.
-      // Both may explain this frame alike (a sheet that slid along itself still lies on its
-      // data) and part at the next, tracked from each: the start whose next frame leaves less
-      // of the data unexplained and less of the surface seen through is kept, the stiff one on
-      // a tie.
-      DeformationTrackStats supple_stats;
-      std::vector<RigidTransform> supple =
-          supple_tracker->Track(data, tracks.back(), {}, &supple_stats);
-      MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(t + 1));
-      const FrameProxy& ahead_proxy = (*proxies)[t + 1];
-      auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
-                            std::vector<RigidTransform>* ahead_pose,
-                            DeformationTrackStats* ahead_stats) {
-        if (may_cut && !TrackedFrameExplained(ctx, key_fit, meter.Measure(pose, proxy))) {
-          return std::numeric_limits<double>::infinity();
+  // Tracks the frames from the key frame's neighbour in `direction` (+1 forwards, -1
+  // backwards) to `last` (included) while the posed base explains them (all of them when the
+  // key group may not be cut), their poses appended to `run` in that order. Returns whether a
+  // frame was not explained (its figures recorded as the cut).
+  auto track_run = [&](int direction, int last,
+                       std::vector<std::vector<RigidTransform>>* run) -> StatusOr<bool> {
+    // A frame's pose already tracked while looking ahead from the one before, and the lost
+    // parts its tracking found again.
+    std::optional<std::vector<RigidTransform>> looked_ahead;
+    int looked_ahead_reacquired = 0;
+    for (int t = key + direction; direction * (last - t) >= 0; t += direction) {
+      if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
+      if (direction > 0) {  // the frames behind are done with
+        proxies->erase(proxies->begin(), proxies->lower_bound(t));
+        fused_frames.erase(fused_frames.begin(), fused_frames.lower_bound(t));
+      } else {
+        fused_frames.erase(fused_frames.upper_bound(t), fused_frames.end());
+      }
+      MESHVID_ASSIGN_OR_RETURN(const TrackingData data, tracking_data(t));
+      const FrameProxy& proxy = (*proxies)[t];
+      const std::vector<RigidTransform>& previous = run->empty() ? identity : run->back();
+      const std::span<const RigidTransform> before =
+          run->size() >= 2   ? std::span<const RigidTransform>((*run)[run->size() - 2])
+          : run->size() == 1 ? std::span<const RigidTransform>(identity)
+                             : std::span<const RigidTransform>();
+      std::vector<RigidTransform> next;
+      DeformationTrackStats next_stats;
+      if (looked_ahead) {
+        next = *std::move(looked_ahead);
+        next_stats.reacquired = looked_ahead_reacquired;
+        looked_ahead.reset();
+      } else {
+        next = tracker.Track(data, previous, before, &next_stats);
+      }
+      const int ahead_frame = t + direction;
+      if (run->empty() && supple_tracker && ahead_frame >= first && ahead_frame < ctx.end) {
+        // The first frame from the key frame has no velocity to predict from. Solved stiff at
+        // first, a fast part moves as a whole; at the set rigidity throughout, a waving sheet
+        // bends from the start. Both may explain this frame alike (a sheet that slid along
+        // itself still lies on its data) and part at the next, tracked from each: the start
+        // whose next frame leaves less of the data unexplained and less of the surface seen
+        // through is kept, the stiff one on a tie.
+        DeformationTrackStats supple_stats;
+        std::vector<RigidTransform> supple =
+            supple_tracker->Track(data, previous, {}, &supple_stats);
+        MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(ahead_frame));
+        const FrameProxy& ahead_proxy = (*proxies)[ahead_frame];
+        auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
+                              std::vector<RigidTransform>* ahead_pose,
+                              DeformationTrackStats* ahead_stats) {
+          if (may_cut && !TrackedFrameExplained(ctx, key_fit, meter.Measure(pose, proxy))) {
+            return std::numeric_limits<double>::infinity();
+          }
+          *ahead_pose = tracker.Track(ahead, pose, previous, ahead_stats);
+          return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
+        };
+        std::vector<RigidTransform> stiff_ahead, supple_ahead;
+        DeformationTrackStats stiff_ahead_stats, supple_ahead_stats;
+        const double stiff_miss = miss_ahead(next, &stiff_ahead, &stiff_ahead_stats);
+        const double supple_miss = miss_ahead(supple, &supple_ahead, &supple_ahead_stats);
+        if (supple_miss < stiff_miss) {
+          next = std::move(supple);
+          next_stats = supple_stats;
+          looked_ahead = std::move(supple_ahead);
+          looked_ahead_reacquired = supple_ahead_stats.reacquired;
+        } else if (std::isfinite(stiff_miss)) {
+          looked_ahead = std::move(stiff_ahead);
+          looked_ahead_reacquired = stiff_ahead_stats.reacquired;
         }
-        *ahead_pose = tracker.Track(ahead, pose, tracks.back(), ahead_stats);
-        return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
-      };
-      std::vector<RigidTransform> stiff_ahead, supple_ahead;
-      DeformationTrackStats stiff_ahead_stats, supple_ahead_stats;
-      const double stiff_miss = miss_ahead(next, &stiff_ahead, &stiff_ahead_stats);
-      const double supple_miss = miss_ahead(supple, &supple_ahead, &supple_ahead_stats);
-      if (supple_miss < stiff_miss) {
-        next = std::move(supple);
-        next_stats = supple_stats;
-        looked_ahead = std::move(supple_ahead);
-        looked_ahead_reacquired = supple_ahead_stats.reacquired;
-      } else if (std::isfinite(stiff_miss)) {
-        looked_ahead = std::move(stiff_ahead);
-        looked_ahead_reacquired = stiff_ahead_stats.reacquired;
       }
-    }
-    if (may_cut) {
-      const DataFit fit = meter.Measure(next, proxy);
-      if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-        RecordCut(key_fit, fit, &summary);
-        break;
+      if (may_cut) {
+        const DataFit fit = meter.Measure(next, proxy);
+        if (!TrackedFrameExplained(ctx, key_fit, fit)) {
+          RecordCut(key_fit, fit, &summary);
+          return true;
+        }
+        summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
       }
-      summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
+      if (proxy.target) {
+        ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);
+      }
+      summary.reacquired_parts += next_stats.reacquired;
+      run->push_back(std::move(next));
     }
-    if (proxy.target) {
-      ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);
-    }
-    summary.reacquired_parts += next_stats.reacquired;
-    tracks.push_back(std::move(next));
+    return false;
+  };
+  std::vector<std::vector<RigidTransform>> backwards, forwards;
+  MESHVID_ASSIGN_OR_RETURN(const bool lost_before_key, track_run(-1, first, &backwards));
+  if (lost_before_key) {
+    ClearCut(&summary);
+    summary.frames = 0;
+    return Status::Ok();
   }
+  MESHVID_ASSIGN_OR_RETURN(const bool cut, track_run(+1, ctx.end - 1, &forwards));
+  (void)cut;  // the cut's figures are in the summary
+  auto& tracks = analysis->tracks;
+  tracks.assign(std::make_move_iterator(backwards.rbegin()),
+                std::make_move_iterator(backwards.rend()));
+  tracks.push_back(identity);
+  tracks.insert(tracks.end(), std::make_move_iterator(forwards.begin()),
+                std::make_move_iterator(forwards.end()));
   summary.frames = static_cast<int>(tracks.size());
-  proxies->erase(proxies->begin(), proxies->lower_bound(start + summary.frames));
+  proxies->erase(proxies->begin(), proxies->lower_bound(first + summary.frames));
   summary.rigid_groups = nodes;
   if (options.tuning.deform_rigid_group_factor > 0) {
     const RigidNodeGroups groups = FindRigidNodeGroups(
@@ -721,6 +755,20 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
   return fit.unexplained_share < unexplained ? careful : base;
 }
 
+namespace {
+
+/// The base of a key group whose key frame is `frame` (MakeKeyFrameBase), the frame's proxy
+/// made and cached when missing.
+StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, ProxyCache* proxies) {
+  MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(frame));
+  if (!proxies->count(frame)) {
+    MESHVID_ASSIGN_OR_RETURN((*proxies)[frame], BuildProxy(ctx, views));
+  }
+  return MakeKeyFrameBase(ctx, views, (*proxies)[frame]);
+}
+
+}  // namespace
+
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
                                            int previous_frames, ProxyCache* cache,
                                            std::optional<TriangleMesh> base_made_ahead) {
@@ -728,27 +776,43 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   KeyGroupAnalysis analysis;
   KeyGroupSummary& summary = analysis.summary;
   summary.first_frame = start;
+  summary.key_frame = start;
   if (!ReportProgress(ctx.progress, "base mesh", start, ctx.end)) return Cancelled();
   auto stage_start = Clock::now();
   ProxyCache& proxies = *cache;
   proxies.erase(proxies.begin(), proxies.lower_bound(start));
+  // With --deform-backward: the key frame a few frames on, tracked back to this one.
+  double seconds_on_later_key_frame = 0;
+  const int later_key = std::min(start + options.tuning.deform_backward_frames, ctx.end - 1);
+  if (options.tuning.deformation_tracking && may_cut && !options.base_mesh && later_key > start) {
+    KeyGroupAnalysis later;
+    later.summary.first_frame = start;
+    MESHVID_ASSIGN_OR_RETURN(later.base, BaseOfKeyFrame(ctx, later_key, &proxies));
+    const BaseTopology later_topology(later.base);
+    later.summary.base_vertices = later.base.vertex_count();
+    later.seconds_base = SecondsSince(stage_start);
+    MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, later_topology, start, later_key, may_cut,
+                                                  &proxies, &later));
+    if (later.summary.frames > 0) return later;
+    // A frame before the later key frame was lost: the key frame is this one after all.
+    seconds_on_later_key_frame = later.seconds_base;
+    analysis.unused_base = std::move(later.base);
+    analysis.unused_base_frame = later_key;
+    stage_start = Clock::now();
+  }
   if (base_made_ahead && proxies.count(start)) {
     analysis.base = *std::move(base_made_ahead);
   } else {
-    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(start));
-    if (!proxies.count(start)) {
-      MESHVID_ASSIGN_OR_RETURN(proxies[start], BuildProxy(ctx, views));
-    }
-    MESHVID_ASSIGN_OR_RETURN(analysis.base, MakeKeyFrameBase(ctx, views, proxies[start]));
+    MESHVID_ASSIGN_OR_RETURN(analysis.base, BaseOfKeyFrame(ctx, start, &proxies));
   }
   const TriangleMesh& base = analysis.base;
   const BaseTopology topology(base);  // one-rings and normals, once per key group
   summary.base_vertices = base.vertex_count();
-  analysis.seconds_base = SecondsSince(stage_start);
+  analysis.seconds_base = SecondsSince(stage_start) + seconds_on_later_key_frame;
 
   if (options.tuning.deformation_tracking) {
     MESHVID_RETURN_IF_ERROR(
-        TrackDeformedKeyGroup(ctx, topology, start, may_cut, &proxies, &analysis));
+        TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, &proxies, &analysis));
     return analysis;
   }
   if (!may_cut) {

@@ -89,6 +89,11 @@ struct KeyGroupAnalysis {
   std::vector<std::vector<RigidTransform>> tracks;  ///< per frame of the key group
   KeyGroupSummary summary;
   double seconds_base = 0, seconds_proxies = 0;
+  /// With EncoderTuning::deform_backward_frames: the base fused for a later key frame that
+  /// did not serve (a frame before it was lost), and that frame (-1: none). A key group that
+  /// starts at that frame may take it as made ahead.
+  std::optional<TriangleMesh> unused_base;
+  int unused_base_frame = -1;
 };
 
 /// The base of a key frame whose views are `views` and proxy `proxy`: fused from few points

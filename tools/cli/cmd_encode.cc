@@ -143,6 +143,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["key_groups"] = nlohmann::json::array();
   for (const KeyGroupSummary& k : s.key_groups) {
     j["key_groups"].push_back({{"first_frame", k.first_frame},
+                               {"key_frame", k.key_frame},
                                {"frames", k.frames},
                                {"base_vertices", k.base_vertices},
                                {"segments", k.segments},
@@ -482,6 +483,13 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "as one rigid body (within --reacquire-distance; --reacquire-below, "
                   "--reacquire-gain and --reacquire-min-vertices as for the segments)")
       ->capture_default_str();
+  cmd->add_option("--deform-backward", o.tuning.deform_backward_frames,
+                  "With --deform, make each key group's key frame this many frames after its "
+                  "first frame and track the frames between backwards from it, so a key group "
+                  "extends both ways from its key frame (where one of them is lost, the key "
+                  "frame is the first frame after all; 0: tracked forwards only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
                   "With --deform, Gauss-Newton steps per correspondence radius")
       ->capture_default_str()

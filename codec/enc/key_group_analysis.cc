@@ -700,8 +700,8 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     summary.frames = 0;
     return Status::Ok();
   }
-  MESHVID_ASSIGN_OR_RETURN(const bool cut, track_run(+1, ctx.end - 1, &forwards));
-  (void)cut;  // the cut's figures are in the summary
+  // Where a frame ends the key group, its figures are in the summary.
+  MESHVID_RETURN_IF_ERROR(track_run(+1, ctx.end - 1, &forwards).status());
   auto& tracks = analysis->tracks;
   tracks.assign(std::make_move_iterator(backwards.rbegin()),
                 std::make_move_iterator(backwards.rend()));

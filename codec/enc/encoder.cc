@@ -347,9 +347,18 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
         ahead.Start(next, std::move(views));
       }
     }
+    // A later key frame's (tuning.deform_backward_frames) made ahead, with its proxy.
+    auto later_base_ahead = [&](int frame) {
+      if (!proxies.count(frame)) {
+        if (std::optional<FrameProxy> proxy = ahead.TakeProxy(frame)) {
+          proxies[frame] = *std::move(proxy);
+        }
+      }
+      return ahead.TakeBase(frame);
+    };
     MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
                              AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies,
-                                             std::move(base_made_ahead)));
+                                             std::move(base_made_ahead), later_base_ahead));
     analysis.seconds_base += seconds_waited;
     if (analysis.unused_base) {
       unused_base = std::move(analysis.unused_base);

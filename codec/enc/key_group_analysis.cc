@@ -769,9 +769,10 @@ StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, Proxy
 
 }  // namespace
 
-StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           int previous_frames, ProxyCache* cache,
-                                           std::optional<TriangleMesh> base_made_ahead) {
+StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
+    const EncodeContext& ctx, int start, bool may_cut, int previous_frames, ProxyCache* cache,
+    std::optional<TriangleMesh> base_made_ahead,
+    const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead) {
   const EncoderOptions& options = ctx.options;
   KeyGroupAnalysis analysis;
   KeyGroupSummary& summary = analysis.summary;
@@ -787,7 +788,13 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, 
   if (options.tuning.deformation_tracking && may_cut && !options.base_mesh && later_key > start) {
     KeyGroupAnalysis later;
     later.summary.first_frame = start;
-    MESHVID_ASSIGN_OR_RETURN(later.base, BaseOfKeyFrame(ctx, later_key, &proxies));
+    std::optional<TriangleMesh> ahead;
+    if (later_base_ahead) ahead = later_base_ahead(later_key);
+    if (ahead && proxies.count(later_key)) {
+      later.base = *std::move(ahead);
+    } else {
+      MESHVID_ASSIGN_OR_RETURN(later.base, BaseOfKeyFrame(ctx, later_key, &proxies));
+    }
     const BaseTopology later_topology(later.base);
     later.summary.base_vertices = later.base.vertex_count();
     later.seconds_base = SecondsSince(stage_start);

@@ -5,6 +5,7 @@
 #define MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -108,10 +109,13 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 /// looking at a few frames (more after a longer previous key group, `previous_frames`; 0: the
 /// first key group). `cache` keeps the proxies of frames the next key group may need.
 /// `base_made_ahead`, when given, is frame `start`'s base (MakeKeyFrameBase's, made on another
-/// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy.
-StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(const EncodeContext& ctx, int start, bool may_cut,
-                                           int previous_frames, ProxyCache* cache,
-                                           std::optional<TriangleMesh> base_made_ahead = {});
+/// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy. With
+/// EncoderTuning::deform_backward_frames, `later_base_ahead`, when given, is asked for the
+/// later key frame's base (and puts its proxy in `cache`) before one is made.
+StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
+    const EncodeContext& ctx, int start, bool may_cut, int previous_frames, ProxyCache* cache,
+    std::optional<TriangleMesh> base_made_ahead = {},
+    const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead = {});
 
 }  // namespace meshvid
 

@@ -377,18 +377,30 @@ TEST(KeyGroups, SurfaceLeftFarFromEveryDataPointEndsTheKeyGroup) {
   }
 }
 
-/// The deformation's node spacing in the --deform tests: a fifth of the scene's 1.8 diagonal
-/// keeps the solves small (about 30 nodes) and still moves each body on its own.
-constexpr double kTestNodeSpacing = 0.15;
+/// TestOptions with the embedded deformation (--deform) and its key frames `frames_back`
+/// frames after their key groups' first (--deform-backward). Nodes a fifth of the scene's 1.8
+/// diagonal apart keep the solves small (about 30 nodes) and still move each body on its own.
+EncoderOptions DeformBackwardOptions(int frames_back) {
+  EncoderOptions options = TestOptions();
+  options.tuning.deformation_tracking = true;
+  options.tuning.node_spacing = 0.15;
+  options.tuning.deform_backward_frames = frames_back;
+  return options;
+}
+
+/// Every frame decodes within 0.03 of its data, RMS (the deformation errs by up to 0.022
+/// where the block slides along the still body, bench/DEFORM.md), before a key frame as after.
+void ExpectEveryFrameNearItsData(const Encoded& encoded, const std::vector<TriangleMesh>& frames) {
+  const std::vector<double> errors = DecodedErrors(encoded.bytes, frames);
+  ASSERT_EQ(errors.size(), frames.size());
+  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.03) << "frame " << f;
+}
 
 TEST(KeyGroups, WithDeformBackwardAKeyGroupExtendsBothWaysFromItsKeyFrame) {
   // The block jumps at frame 5. Each key group's key frame is 2 frames after its first, the
   // frames between tracked backwards from it: 0 <- 2 -> 4, then 5 <- 7 (the last frame).
   const std::vector<TriangleMesh> frames = TwoBodyFrames(8, 0.01f, 5);
-  EncoderOptions options = TestOptions();
-  options.tuning.deformation_tracking = true;
-  options.tuning.node_spacing = kTestNodeSpacing;
-  options.tuning.deform_backward_frames = 2;
+  const EncoderOptions options = DeformBackwardOptions(2);
   const Encoded encoded = Encode(frames, options);
   ASSERT_EQ(encoded.summary.key_groups.size(), 2u);
   const KeyGroupSummary& before = encoded.summary.key_groups[0];
@@ -400,21 +412,14 @@ TEST(KeyGroups, WithDeformBackwardAKeyGroupExtendsBothWaysFromItsKeyFrame) {
   EXPECT_EQ(after.first_frame, 5);
   EXPECT_EQ(after.key_frame, 7);
   EXPECT_EQ(after.frames, 3);
-  // Frames before a key frame decode as close to the data as those after it (the deformation
-  // errs by up to 0.022 where the block slides along the still body, bench/DEFORM.md).
-  const std::vector<double> errors = DecodedErrors(encoded.bytes, frames);
-  ASSERT_EQ(errors.size(), frames.size());
-  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.03) << "frame " << f;
+  ExpectEveryFrameNearItsData(encoded, frames);
 }
 
 TEST(KeyGroups, WithDeformBackwardAFrameLostBeforeTheKeyFrameMakesTheFirstTheKeyFrame) {
   // The block jumps at frame 2. Tracked back from frame 3, frame 1 is lost, so the first key
   // group's key frame is frame 0 after all (0 -> 1, ended by the jump); the next is 2 <- 5 -> 7.
   const std::vector<TriangleMesh> frames = TwoBodyFrames(8, 0.01f, 2);
-  EncoderOptions options = TestOptions();
-  options.tuning.deformation_tracking = true;
-  options.tuning.node_spacing = kTestNodeSpacing;
-  options.tuning.deform_backward_frames = 3;
+  const EncoderOptions options = DeformBackwardOptions(3);
   const Encoded encoded = Encode(frames, options);
   ASSERT_EQ(encoded.summary.key_groups.size(), 2u);
   EXPECT_EQ(encoded.summary.key_groups[0].key_frame, 0);
@@ -422,9 +427,7 @@ TEST(KeyGroups, WithDeformBackwardAFrameLostBeforeTheKeyFrameMakesTheFirstTheKey
   EXPECT_EQ(encoded.summary.key_groups[1].first_frame, 2);
   EXPECT_EQ(encoded.summary.key_groups[1].key_frame, 5);
   EXPECT_EQ(encoded.summary.key_groups[1].frames, 6);
-  const std::vector<double> errors = DecodedErrors(encoded.bytes, frames);
-  ASSERT_EQ(errors.size(), frames.size());
-  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.03) << "frame " << f;
+  ExpectEveryFrameNearItsData(encoded, frames);
 }
 
 TEST(KeyGroups, WithDeformBackwardABaseFusedInVainServesTheNextKeyGroup) {
@@ -433,19 +436,14 @@ TEST(KeyGroups, WithDeformBackwardABaseFusedInVainServesTheNextKeyGroup) {
   // fused for key frame 1 before (KeyGroupAnalysis::unused_base); then 2 <- 3 -> 4.
   const std::vector<float> heights = {0, 0.3f, 0, 0, 0};
   const std::vector<TriangleMesh> frames = TwoBodyFramesAtHeights(0.01f, heights);
-  EncoderOptions options = TestOptions();
-  options.tuning.deformation_tracking = true;
-  options.tuning.node_spacing = kTestNodeSpacing;
-  options.tuning.deform_backward_frames = 1;
+  EncoderOptions options = DeformBackwardOptions(1);
   const Encoded encoded = Encode(frames, options);
   std::vector<std::array<int, 3>> groups;  // first frame, key frame, frames
   for (const KeyGroupSummary& k : encoded.summary.key_groups) {
     groups.push_back({k.first_frame, k.key_frame, k.frames});
   }
   EXPECT_EQ(groups, (std::vector<std::array<int, 3>>{{0, 0, 1}, {1, 1, 1}, {2, 3, 3}}));
-  const std::vector<double> errors = DecodedErrors(encoded.bytes, frames);
-  ASSERT_EQ(errors.size(), frames.size());
-  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.03) << "frame " << f;
+  ExpectEveryFrameNearItsData(encoded, frames);
   // After the key groups of one frame, the later key frames' bases were made ahead on another
   // thread: the same bases, so the same file as when every base is made in turn.
   options.tuning.base_ahead = false;

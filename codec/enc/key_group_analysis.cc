@@ -525,16 +525,22 @@ struct PointsWithNormals {
   std::vector<Eigen::Vector3f> normals;
 };
 
+/// Frames fused as tracking targets, by frame: shared by the tracking runs of one key group's
+/// analysis, so a first-frame key group after a later key frame failed fuses no frame again.
+using FusedFrames = std::map<int, PointsWithNormals>;
+
 /// The motion of a key group as an embedded deformation of its base (tuning.
 /// deformation_tracking), fused from its key frame `key`: its nodes tracked frame by frame
 /// backwards from the key frame to the key group's first frame `first` (tuning.
 /// deform_backward_frames), then forwards while the posed base explains each frame's data (to
 /// the end of the capture unless `may_cut`). Fills the analysis' motion, tracks (from `first`
 /// on), frame count and node figures. The frame count is 0 when a frame between `first` and
-/// the key frame is not explained: the key frame cannot start at `first`.
+/// the key frame is not explained: the key frame cannot start at `first`. Fused tracking
+/// targets are kept in `fused_frames` (those behind a forward run are dropped; a backward run
+/// keeps its frames for a first-frame key group that may follow).
 Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
                              int key, bool may_cut, ProxyCache* proxies,
-                             KeyGroupAnalysis* analysis) {
+                             FusedFrames* fused_frames, KeyGroupAnalysis* analysis) {
   const EncoderOptions& options = ctx.options;
   const TriangleMesh& base = analysis->base;
   KeyGroupSummary& summary = analysis->summary;
@@ -584,11 +590,10 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   }
   // What frame t is tracked to: the frame fused (closed where no view saw it, as a key
   // frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
-  std::map<int, PointsWithNormals> fused_frames;
   auto tracking_data = [&](int t) -> StatusOr<TrackingData> {
     const bool track_fused = options.tuning.deform_track_fused;
-    if (track_fused && fused_frames.count(t) > 0) {
-      const PointsWithNormals& fused = fused_frames.at(t);
+    if (track_fused && fused_frames->count(t) > 0) {
+      const PointsWithNormals& fused = fused_frames->at(t);
       return TrackingData{fused.positions, fused.normals};
     }
     if (!track_fused && proxies->count(t) > 0) {
@@ -602,7 +607,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
     if (!track_fused) return TrackingData{proxies->at(t).points, proxies->at(t).normals};
     MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused,
                              FuseFrame(ctx, views, options.tuning.base_fusion_points));
-    PointsWithNormals& kept = fused_frames[t];
+    PointsWithNormals& kept = (*fused_frames)[t];
     kept.normals = ComputeVertexNormals(fused);
     kept.positions = std::move(fused.positions);
     return TrackingData{kept.positions, kept.normals};
@@ -621,9 +626,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
       if (direction > 0) {  // the frames behind are done with
         proxies->erase(proxies->begin(), proxies->lower_bound(t));
-        fused_frames.erase(fused_frames.begin(), fused_frames.lower_bound(t));
-      } else {
-        fused_frames.erase(fused_frames.upper_bound(t), fused_frames.end());
+        fused_frames->erase(fused_frames->begin(), fused_frames->lower_bound(t));
       }
       MESHVID_ASSIGN_OR_RETURN(const TrackingData data, tracking_data(t));
       const FrameProxy& proxy = (*proxies)[t];
@@ -757,9 +760,12 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 
 namespace {
 
-/// The base of a key group whose key frame is `frame` (MakeKeyFrameBase), the frame's proxy
-/// made and cached when missing.
-StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, ProxyCache* proxies) {
+/// The base of a key group whose key frame is `frame`: `made_ahead` (the same base, made on
+/// another thread) when given and the frame's proxy is cached, else MakeKeyFrameBase, the
+/// frame's proxy made and cached when missing.
+StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, ProxyCache* proxies,
+                                      std::optional<TriangleMesh> made_ahead) {
+  if (made_ahead && proxies->count(frame)) return *std::move(made_ahead);
   MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(frame));
   if (!proxies->count(frame)) {
     MESHVID_ASSIGN_OR_RETURN((*proxies)[frame], BuildProxy(ctx, views));
@@ -783,23 +789,21 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   ProxyCache& proxies = *cache;
   proxies.erase(proxies.begin(), proxies.lower_bound(start));
   // With --deform-backward: the key frame a few frames on, tracked back to this one.
+  FusedFrames fused_frames;
   double seconds_on_later_key_frame = 0;
   const int later_key = std::min(start + options.tuning.deform_backward_frames, ctx.end - 1);
   if (options.tuning.deformation_tracking && may_cut && !options.base_mesh && later_key > start) {
     KeyGroupAnalysis later;
     later.summary.first_frame = start;
-    std::optional<TriangleMesh> ahead;
-    if (later_base_ahead) ahead = later_base_ahead(later_key);
-    if (ahead && proxies.count(later_key)) {
-      later.base = *std::move(ahead);
-    } else {
-      MESHVID_ASSIGN_OR_RETURN(later.base, BaseOfKeyFrame(ctx, later_key, &proxies));
-    }
+    MESHVID_ASSIGN_OR_RETURN(
+        later.base,
+        BaseOfKeyFrame(ctx, later_key, &proxies,
+                       later_base_ahead ? later_base_ahead(later_key) : std::nullopt));
     const BaseTopology later_topology(later.base);
     later.summary.base_vertices = later.base.vertex_count();
     later.seconds_base = SecondsSince(stage_start);
     MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, later_topology, start, later_key, may_cut,
-                                                  &proxies, &later));
+                                                  &proxies, &fused_frames, &later));
     if (later.summary.frames > 0) return later;
     // A frame before the later key frame was lost: the key frame is this one after all.
     seconds_on_later_key_frame = later.seconds_base;
@@ -807,19 +811,16 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     analysis.unused_base_frame = later_key;
     stage_start = Clock::now();
   }
-  if (base_made_ahead && proxies.count(start)) {
-    analysis.base = *std::move(base_made_ahead);
-  } else {
-    MESHVID_ASSIGN_OR_RETURN(analysis.base, BaseOfKeyFrame(ctx, start, &proxies));
-  }
+  MESHVID_ASSIGN_OR_RETURN(analysis.base,
+                           BaseOfKeyFrame(ctx, start, &proxies, std::move(base_made_ahead)));
   const TriangleMesh& base = analysis.base;
   const BaseTopology topology(base);  // one-rings and normals, once per key group
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start) + seconds_on_later_key_frame;
 
   if (options.tuning.deformation_tracking) {
-    MESHVID_RETURN_IF_ERROR(
-        TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, &proxies, &analysis));
+    MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, topology, start, start, may_cut,
+                                                  &proxies, &fused_frames, &analysis));
     return analysis;
   }
   if (!may_cut) {

@@ -77,6 +77,17 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
       EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 0);
     }
   }
+  // The embedded deformation's settings without --deform: the encode runs and says they are
+  // not read, quiet or not.
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --deform-backward 1 --rigidity 0.2 -q",
+                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("warning: --deform-backward has no effect without --deform 1"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("warning: --rigidity has no effect"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("--node-spacing"), std::string::npos) << run.err;  // not given
   std::filesystem::remove(out);
   run = testing::RunMeshvid("encode --help", dir);
   EXPECT_EQ(run.exit_code, 0);
@@ -246,6 +257,7 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
           "' --deform 1 --rigid-groups 1 -q --summary-json '" + dir_->File("deform.json") + "'",
       *dir_);
   ASSERT_EQ(enc.exit_code, 0) << enc.err;
+  EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;  // --rigid-groups is read
   const nlohmann::json summary =
       nlohmann::json::parse(testing::ReadFile(dir_->File("deform.json")));
   for (const auto& group : summary["key_groups"]) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -527,7 +528,24 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--summary-json", args->summary_json,
                   "Also write the summary (bytes per stream, rate, timings) as JSON");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
-  cmd->callback([args, exit_code] { *exit_code = RunEncode(*args); });
+  // The embedded deformation's settings, which the segmentation does not read.
+  std::vector<const CLI::Option*> deform_only;
+  for (const char* name : {"--node-spacing", "--rigidity", "--coarse-stiffness", "--point-weight",
+                           "--rigid-groups", "--deform-fused", "--deform-reacquire",
+                           "--deform-backward", "--deform-iterations",
+                           "--deform-first-iterations"}) {
+    deform_only.push_back(cmd->get_option(name));
+  }
+  cmd->callback([args, exit_code, deform_only] {
+    if (!args->options.tuning.deformation_tracking) {
+      for (const CLI::Option* option : deform_only) {
+        if (option->count() == 0) continue;
+        std::fprintf(stderr, "meshvid: warning: %s has no effect without --deform 1\n",
+                     option->get_name().c_str());
+      }
+    }
+    *exit_code = RunEncode(*args);
+  });
 }
 
 }  // namespace meshvid::cli

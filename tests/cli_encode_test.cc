@@ -254,10 +254,13 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
   const std::string mvid = dir_->File("arm-deform.mvid");
   const testing::CliRun enc = testing::RunMeshvid(
       "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
-          "' --deform 1 --rigid-groups 1 -q --summary-json '" + dir_->File("deform.json") + "'",
+          "' --deform 1 --rigid-groups 1 --summary-json '" + dir_->File("deform.json") + "'",
       *dir_);
   ASSERT_EQ(enc.exit_code, 0) << enc.err;
   EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;  // --rigid-groups is read
+  // The summary speaks of the deformation's nodes and groups, not of segments.
+  EXPECT_NE(enc.err.find("deformation nodes moving as"), std::string::npos) << enc.err;
+  EXPECT_EQ(enc.err.find("rigid pieces"), std::string::npos) << enc.err;
   const nlohmann::json summary =
       nlohmann::json::parse(testing::ReadFile(dir_->File("deform.json")));
   for (const auto& group : summary["key_groups"]) {

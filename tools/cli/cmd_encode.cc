@@ -179,6 +179,27 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   return j;
 }
 
+/// The summary's line on the motion: the segmentation's pieces, or with --deform the
+/// deformation's nodes and the rigid groups they were joined into (means over key groups).
+std::string MotionLine(const EncodeSummary& s, const EncoderOptions& options) {
+  char line[256];
+  if (options.tuning.deformation_tracking) {
+    double groups = 0;
+    for (const KeyGroupSummary& k : s.key_groups) groups += k.rigid_groups;
+    groups /= double(std::max<std::size_t>(1, s.key_groups.size()));
+    std::snprintf(line, sizeof(line),
+                  "  motion        %d deformation nodes moving as %.0f rigid groups (means over "
+                  "key groups); %.1f%% of base triangles seen\n",
+                  s.segments, groups, 100 * s.surface_share);
+  } else {
+    std::snprintf(line, sizeof(line),
+                  "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d "
+                  "patches over the rest; %.1f%% of base triangles seen\n",
+                  s.segments, 100 * s.registered_share, s.patches, 100 * s.surface_share);
+  }
+  return line;
+}
+
 void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double seconds) {
   const double frames = std::max(1, s.frames);
   const MvidWriteStats& b = s.stats;
@@ -186,15 +207,14 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
                "  key groups    %zu (mean %.1f frames; a fresh base where tracking lost the data)\n"
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
-               "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d patches "
-               "over the rest; %.1f%% of base triangles seen\n"
+               "%s"
                "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
                "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
                "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
                s.frames, s.views, args.capture.c_str(), args.output.c_str(), seconds,
                frames / seconds, s.key_groups.size(),
-               frames / double(std::max<std::size_t>(1, s.key_groups.size())), s.base_vertices, s.samples_per_frame, args.options.levels,
-               s.segments, 100 * s.registered_share, s.patches, 100 * s.surface_share,
+               frames / double(std::max<std::size_t>(1, s.key_groups.size())), s.base_vertices,
+               s.samples_per_frame, args.options.levels, MotionLine(s, args.options).c_str(),
                100 * s.hit_share, 100 * s.filled_share,
                Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
                Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),

@@ -9,17 +9,15 @@
 #include <span>
 #include <string>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "codec/common/subdivision.h"
 #include "codec/enc/data_fit.h"
 #include "codec/enc/decimation.h"
-#include "codec/enc/deformation_tracking.h"
+#include "codec/enc/deformed_key_group.h"
+#include "codec/enc/key_group_rules.h"
 #include "codec/enc/motion_blend.h"
 #include "codec/enc/patch_tracking.h"
-#include "codec/enc/rigid_node_groups.h"
 #include "codec/enc/surface_fusion.h"
 
 namespace meshvid {
@@ -71,33 +69,6 @@ Eigen::AlignedBox3f BoxOf(const std::vector<TriangleMesh>& views) {
 
 namespace {
 
-/// The key-group threshold in force (EncoderOptions::key_group_threshold; -1: by tracker).
-double KeyGroupThreshold(const EncoderOptions& options) {
-  if (options.key_group_threshold >= 0) return options.key_group_threshold;
-  return options.tuning.deformation_tracking ? kDeformationKeyGroupThreshold
-                                             : kSegmentationKeyGroupThreshold;
-}
-
-/// Whether a tracked frame's fit still explains its data against the key frame's, by the
-/// key-group rule in force (StillExplains with the threshold and the farthest growth).
-bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
-  return StillExplains(key_fit, fit, KeyGroupThreshold(ctx.options),
-                       ctx.lengths.farthest_growth);
-}
-
-/// Records in `summary` what ended its key group: the rules' figures of the tracked frame
-/// whose `fit` no longer explained its data, against the key frame's `key_fit`.
-void RecordCut(const DataFit& key_fit, const DataFit& fit, KeyGroupSummary* summary) {
-  summary->cut_unexplained = fit.unexplained_share;
-  summary->cut_seen_through = fit.seen_through_share;
-  summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
-}
-
-/// Clears them (-1): no frame has ended the key group.
-void ClearCut(KeyGroupSummary* summary) {
-  summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth = -1;
-}
-
 /// The fit of a frame's points to its unposed base (sampled on lattice level <= 2).
 StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                             const std::vector<Eigen::Vector3f>& points, float distance) {
@@ -108,17 +79,6 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
                        &samples, &directions);
   return MeasureDataFit(samples, points, distance, std::numeric_limits<float>::infinity(),
                         directions, SampleReach(samples, lattice.Triangles(lattice.levels())));
-}
-
-/// A frame's views fused into one closed surface (at most `fusion_points` of their points).
-StatusOr<TriangleMesh> FuseFrame(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
-                                 std::size_t fusion_points) {
-  SurfaceFusionOptions fusion_options;
-  fusion_options.max_points = fusion_points;
-  fusion_options.voxel_scale = ctx.options.tuning.base_voxel_scale;
-  fusion_options.max_extension_spacings = ctx.options.tuning.base_max_extension;
-  fusion_options.view_cameras = ctx.view_cameras;
-  return FuseRangeMeshes(views, fusion_options, ctx.progress);
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame, or the key frame's
@@ -274,102 +234,6 @@ StatusOr<SegmentedMotion> SegmentFrames(const EncodeContext& ctx, const BaseTopo
   return result;
 }
 
-/// Marks the base vertices some view sees in one frame (`target`) when posed by `track`:
-/// a shot along the posed normal hits within the displacement range.
-void ObserveVertices(const EncodeContext& ctx, const TriangleMesh& base,
-                     const MotionModel& motion, const ShootingTarget& target,
-                     std::span<const RigidTransform> track, std::vector<char>* observed) {
-  std::vector<Eigen::Vector3f> posed, normals;
-  ShotLimits limits = ctx.seg.shot;
-  limits.max_distance = ctx.lengths.detail_max_distance;
-  PoseVertices(motion, track, base.positions, &posed);
-  ComputeVertexNormals(posed, base.triangles, &normals);
-  observed->resize(base.vertex_count(), 0);
-  tbb::parallel_for(std::size_t(0), posed.size(), [&](std::size_t v) {
-    if (!(*observed)[v] && !std::isnan(target.Shoot(posed[v], normals[v], limits))) {
-      (*observed)[v] = 1;
-    }
-  });
-}
-
-/// The base triangles some view saw (two corners or more, `observed`); sets the summary's
-/// share and, with hide_unseen, the motion's surface mask.
-void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
-                 const std::vector<char>& observed, MotionModel* motion,
-                 KeyGroupSummary* summary) {
-  motion->surface_triangles.resize(base.triangle_count());
-  std::size_t surface = 0;
-  for (std::size_t i = 0; i < base.triangle_count(); ++i) {
-    const Triangle& tri = base.triangles[i];
-    const int seen = observed[tri[0]] + observed[tri[1]] + observed[tri[2]];
-    motion->surface_triangles[i] = seen >= 2;
-    surface += seen >= 2;
-  }
-  summary->surface_share = double(surface) / double(base.triangle_count());
-  if (!ctx.options.hide_unseen) motion->surface_triangles.clear();
-}
-
-/// Measures how well the base posed by `transforms` explains a frame's data points.
-class FitMeter {
- public:
-  /// `judge_across`: SeenFreeSpace::Judge's `across_too`, as each tracker's key-group
-  /// threshold was measured.
-  FitMeter(const TriangleMesh& base, const MotionModel& motion, const RegularSubdivision& lattice,
-           float representable_distance, float stray_distance, bool judge_across)
-      : base_(base),
-        motion_(motion),
-        lattice_(lattice),
-        distance_(representable_distance),
-        stray_distance_(stray_distance),
-        judge_across_(judge_across),
-        triangles_(lattice.Triangles(lattice.levels())) {}
-  DataFit Measure(const std::vector<RigidTransform>& transforms, const FrameProxy& frame) {
-    PoseVertices(motion_, transforms, base_.positions, &posed_);
-    ComputeVertexNormals(posed_, base_.triangles, &normals_);
-    EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
-    DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_,
-                                 directions_, SampleReach(samples_, triangles_));
-    if (frame.free_space && !samples_.empty()) {
-      // Farther in front of what a camera saw than a displacement reaches (along the normal,
-      // or past the edge of a view's data across the image), among the samples some camera
-      // can judge (a one-view rig judges fewer than a ring).
-      struct Counts {
-        std::size_t judged = 0, seen_through = 0;
-      };
-      const Counts counts = tbb::parallel_reduce(
-          tbb::blocked_range<std::size_t>(0, samples_.size(), 2048), Counts{},
-          [&](const tbb::blocked_range<std::size_t>& range, Counts partial) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-              const SeenFreeSpace::Verdict verdict =
-                  frame.free_space->Judge(samples_[i], directions_[i], distance_,
-                                          judge_across_);
-              partial.judged += verdict != SeenFreeSpace::Verdict::kUnjudged;
-              partial.seen_through += verdict == SeenFreeSpace::Verdict::kSeenThrough;
-            }
-            return partial;
-          },
-          [](Counts a, const Counts& b) {
-            a.judged += b.judged;
-            a.seen_through += b.seen_through;
-            return a;
-          });
-      if (counts.judged > 0) {
-        fit.seen_through_share = double(counts.seen_through) / double(counts.judged);
-      }
-    }
-    return fit;
-  }
-
- private:
-  const TriangleMesh& base_;
-  const MotionModel& motion_;
-  const RegularSubdivision& lattice_;
-  float distance_, stray_distance_;
-  bool judge_across_;
-  std::vector<Triangle> triangles_;  ///< the lattice's finest triangles
-  std::vector<Eigen::Vector3f> posed_, normals_, samples_, directions_;
-};
-
 /// Graph nodes that moved with the piece they were split from in every frame of the key
 /// group (RMS apart over their members within tuning.node_rejoin_factor x the tolerance)
 /// join it again, so a rigid part
@@ -512,217 +376,6 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
   }
   MarkSurface(ctx, base, observed, &analysis->motion, &analysis->summary);
   return segmented;
-}
-
-/// How much of a frame a tracked pose fails to explain, as the key-group rule sees it: the
-/// share of the data beyond the displacement range plus the share of the surface lying where
-/// a camera saw through.
-double DataMiss(const DataFit& fit) { return fit.unexplained_share + fit.seen_through_share; }
-
-/// A frame's fused surface as the deformation tracker searches it.
-struct PointsWithNormals {
-  std::vector<Eigen::Vector3f> positions;
-  std::vector<Eigen::Vector3f> normals;
-};
-
-/// Frames fused as tracking targets, by frame: shared by the tracking runs of one key group's
-/// analysis, so a first-frame key group after a later key frame failed fuses no frame again.
-using FusedFrames = std::map<int, PointsWithNormals>;
-
-/// The motion of a key group as an embedded deformation of its base (tuning.
-/// deformation_tracking), fused from its key frame `key`: its nodes tracked frame by frame
-/// backwards from the key frame to the key group's first frame `first` (tuning.
-/// deform_backward_frames), then forwards while the posed base explains each frame's data (to
-/// the end of the capture unless `may_cut`). Fills the analysis' motion, tracks (from `first`
-/// on), frame count and node figures. The frame count is 0 when a frame between `first` and
-/// the key frame is not explained: the key frame cannot start at `first`. Fused tracking
-/// targets are kept in `fused_frames` (those behind a forward run are dropped; a backward run
-/// keeps its frames for a first-frame key group that may follow).
-Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
-                             int key, bool may_cut, ProxyCache* proxies,
-                             FusedFrames* fused_frames, KeyGroupAnalysis* analysis) {
-  const EncoderOptions& options = ctx.options;
-  const TriangleMesh& base = analysis->base;
-  KeyGroupSummary& summary = analysis->summary;
-  MESHVID_ASSIGN_OR_RETURN(const DeformationGraph graph,
-                           BuildDeformationGraph(topology, ctx.lengths.node_spacing));
-  analysis->motion = graph.motion;
-  const int nodes = static_cast<int>(graph.node_count());
-  summary.segments = nodes;
-  summary.patches = 0;
-  summary.registered_share = 1;
-  summary.key_frame = key;
-  DeformationTrackingOptions tracking;
-  tracking.max_distance = ctx.lengths.max_distance;
-  tracking.tolerance = ctx.seg.tolerance;
-  tracking.min_normal_cos = ctx.seg.shot.min_abs_cos;
-  tracking.rigidity = options.tuning.deform_rigidity;
-  tracking.coarse_stiffness = options.tuning.deform_coarse_stiffness;
-  tracking.point_weight = options.tuning.deform_point_weight;
-  tracking.iterations = options.tuning.deform_iterations;
-  tracking.first_iterations = options.tuning.deform_first_iterations;
-  if (options.tuning.deform_reacquire) {
-    tracking.reacquire_max_distance = ctx.lengths.reacquire_max_distance;
-    tracking.reacquire_below = static_cast<float>(options.tuning.reacquire_below);
-    tracking.reacquire_gain = static_cast<float>(options.tuning.reacquire_gain);
-    tracking.reacquire_min_vertices = options.tuning.reacquire_min_vertices;
-  }
-  const DeformationTracker tracker(topology, graph, tracking);
-  // The key group's second frame is also solved at the set rigidity throughout (see below).
-  DeformationTrackingOptions supple_tracking = tracking;
-  supple_tracking.coarse_stiffness = 1;
-  std::optional<DeformationTracker> supple_tracker;
-  if (tracking.coarse_stiffness > 1) supple_tracker.emplace(topology, graph, supple_tracking);
-
-  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
-                           RegularSubdivision::Create(base, std::min(options.levels, 2)));
-  FitMeter meter(base, analysis->motion, lattice, ctx.lengths.detail_max_distance,
-                 ctx.lengths.max_distance, /*judge_across=*/true);
-  const std::vector<RigidTransform> identity(nodes);
-  const FrameProxy& key_frame = (*proxies)[key];
-  const DataFit key_fit = meter.Measure(identity, key_frame);
-  summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
-  summary.key_frame_seen_through = key_fit.seen_through_share;
-  ClearCut(&summary);
-  std::vector<char> observed(base.vertex_count(), 0);
-  if (key_frame.target) {
-    ObserveVertices(ctx, base, analysis->motion, *key_frame.target, identity, &observed);
-  }
-  // What frame t is tracked to: the frame fused (closed where no view saw it, as a key
-  // frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
-  auto tracking_data = [&](int t) -> StatusOr<TrackingData> {
-    const bool track_fused = options.tuning.deform_track_fused;
-    if (track_fused && fused_frames->count(t) > 0) {
-      const PointsWithNormals& fused = fused_frames->at(t);
-      return TrackingData{fused.positions, fused.normals};
-    }
-    if (!track_fused && proxies->count(t) > 0) {
-      return TrackingData{proxies->at(t).points, proxies->at(t).normals};
-    }
-    // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
-    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
-    if (proxies->count(t) == 0) {
-      MESHVID_ASSIGN_OR_RETURN((*proxies)[t], BuildProxy(ctx, views));
-    }
-    if (!track_fused) return TrackingData{proxies->at(t).points, proxies->at(t).normals};
-    MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused,
-                             FuseFrame(ctx, views, options.tuning.base_fusion_points));
-    PointsWithNormals& kept = (*fused_frames)[t];
-    kept.normals = ComputeVertexNormals(fused);
-    kept.positions = std::move(fused.positions);
-    return TrackingData{kept.positions, kept.normals};
-  };
-  // Tracks the frames from the key frame's neighbour in `direction` (+1 forwards, -1
-  // backwards) to `last` (included) while the posed base explains them (all of them when the
-  // key group may not be cut), their poses appended to `run` in that order. Returns whether a
-  // frame was not explained (its figures recorded as the cut).
-  auto track_run = [&](int direction, int last,
-                       std::vector<std::vector<RigidTransform>>* run) -> StatusOr<bool> {
-    // A frame's pose already tracked while looking ahead from the one before, and the lost
-    // parts its tracking found again.
-    std::optional<std::vector<RigidTransform>> looked_ahead;
-    int looked_ahead_reacquired = 0;
-    for (int t = key + direction; direction * (last - t) >= 0; t += direction) {
-      if (!ReportProgress(ctx.progress, "tracking", t, ctx.end)) return Cancelled();
-      if (direction > 0) {  // the frames behind are done with
-        proxies->erase(proxies->begin(), proxies->lower_bound(t));
-        fused_frames->erase(fused_frames->begin(), fused_frames->lower_bound(t));
-      }
-      MESHVID_ASSIGN_OR_RETURN(const TrackingData data, tracking_data(t));
-      const FrameProxy& proxy = (*proxies)[t];
-      const std::vector<RigidTransform>& previous = run->empty() ? identity : run->back();
-      const std::span<const RigidTransform> before =
-          run->size() >= 2   ? std::span<const RigidTransform>((*run)[run->size() - 2])
-          : run->size() == 1 ? std::span<const RigidTransform>(identity)
-                             : std::span<const RigidTransform>();
-      std::vector<RigidTransform> next;
-      DeformationTrackStats next_stats;
-      if (looked_ahead) {
-        next = *std::move(looked_ahead);
-        next_stats.reacquired = looked_ahead_reacquired;
-        looked_ahead.reset();
-      } else {
-        next = tracker.Track(data, previous, before, &next_stats);
-      }
-      const int ahead_frame = t + direction;
-      if (run->empty() && supple_tracker && ahead_frame >= first && ahead_frame < ctx.end) {
-        // The first frame from the key frame has no velocity to predict from. Solved stiff at
-        // first, a fast part moves as a whole; at the set rigidity throughout, a waving sheet
-        // bends from the start. Both may explain this frame alike (a sheet that slid along
-        // itself still lies on its data) and part at the next, tracked from each: the start
-        // whose next frame leaves less of the data unexplained and less of the surface seen
-        // through is kept, the stiff one on a tie.
-        DeformationTrackStats supple_stats;
-        std::vector<RigidTransform> supple =
-            supple_tracker->Track(data, previous, {}, &supple_stats);
-        MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(ahead_frame));
-        const FrameProxy& ahead_proxy = (*proxies)[ahead_frame];
-        auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
-                              std::vector<RigidTransform>* ahead_pose,
-                              DeformationTrackStats* ahead_stats) {
-          if (may_cut && !TrackedFrameExplained(ctx, key_fit, meter.Measure(pose, proxy))) {
-            return std::numeric_limits<double>::infinity();
-          }
-          *ahead_pose = tracker.Track(ahead, pose, previous, ahead_stats);
-          return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
-        };
-        std::vector<RigidTransform> stiff_ahead, supple_ahead;
-        DeformationTrackStats stiff_ahead_stats, supple_ahead_stats;
-        const double stiff_miss = miss_ahead(next, &stiff_ahead, &stiff_ahead_stats);
-        const double supple_miss = miss_ahead(supple, &supple_ahead, &supple_ahead_stats);
-        if (supple_miss < stiff_miss) {
-          next = std::move(supple);
-          next_stats = supple_stats;
-          looked_ahead = std::move(supple_ahead);
-          looked_ahead_reacquired = supple_ahead_stats.reacquired;
-        } else if (std::isfinite(stiff_miss)) {
-          looked_ahead = std::move(stiff_ahead);
-          looked_ahead_reacquired = stiff_ahead_stats.reacquired;
-        }
-      }
-      if (may_cut) {
-        const DataFit fit = meter.Measure(next, proxy);
-        if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-          RecordCut(key_fit, fit, &summary);
-          return true;
-        }
-        summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
-      }
-      if (proxy.target) {
-        ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);
-      }
-      summary.reacquired_parts += next_stats.reacquired;
-      run->push_back(std::move(next));
-    }
-    return false;
-  };
-  std::vector<std::vector<RigidTransform>> backwards, forwards;
-  MESHVID_ASSIGN_OR_RETURN(const bool lost_before_key, track_run(-1, first, &backwards));
-  if (lost_before_key) {
-    ClearCut(&summary);
-    summary.frames = 0;
-    return Status::Ok();
-  }
-  // Where a frame ends the key group, its figures are in the summary.
-  MESHVID_RETURN_IF_ERROR(track_run(+1, ctx.end - 1, &forwards).status());
-  auto& tracks = analysis->tracks;
-  tracks.assign(std::make_move_iterator(backwards.rbegin()),
-                std::make_move_iterator(backwards.rend()));
-  tracks.push_back(identity);
-  tracks.insert(tracks.end(), std::make_move_iterator(forwards.begin()),
-                std::make_move_iterator(forwards.end()));
-  summary.frames = static_cast<int>(tracks.size());
-  proxies->erase(proxies->begin(), proxies->lower_bound(first + summary.frames));
-  summary.rigid_groups = nodes;
-  if (options.tuning.deform_rigid_group_factor > 0) {
-    const RigidNodeGroups groups = FindRigidNodeGroups(
-        base.positions, graph.motion, graph.adjacent, tracks,
-        static_cast<float>(options.tuning.deform_rigid_group_factor * ctx.seg.tolerance));
-    ApplyRigidNodeGroups(groups, &tracks);
-    summary.rigid_groups = groups.group_count;
-  }
-  MarkSurface(ctx, base, observed, &analysis->motion, &summary);
-  return Status::Ok();
 }
 
 /// Frames a key group that may be cut is first analysed over: where tracking fails fast,

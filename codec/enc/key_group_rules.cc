@@ -1,0 +1,116 @@
+#include "codec/enc/key_group_rules.h"
+
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "codec/enc/surface_fusion.h"
+
+namespace meshvid {
+namespace {
+
+/// The key-group threshold in force (EncoderOptions::key_group_threshold; -1: by tracker).
+double KeyGroupThreshold(const EncoderOptions& options) {
+  if (options.key_group_threshold >= 0) return options.key_group_threshold;
+  return options.tuning.deformation_tracking ? kDeformationKeyGroupThreshold
+                                             : kSegmentationKeyGroupThreshold;
+}
+
+}  // namespace
+
+bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
+  return StillExplains(key_fit, fit, KeyGroupThreshold(ctx.options),
+                       ctx.lengths.farthest_growth);
+}
+
+void RecordCut(const DataFit& key_fit, const DataFit& fit, KeyGroupSummary* summary) {
+  summary->cut_unexplained = fit.unexplained_share;
+  summary->cut_seen_through = fit.seen_through_share;
+  summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+}
+
+void ClearCut(KeyGroupSummary* summary) {
+  summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth = -1;
+}
+
+StatusOr<TriangleMesh> FuseFrame(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
+                                 std::size_t fusion_points) {
+  SurfaceFusionOptions fusion_options;
+  fusion_options.max_points = fusion_points;
+  fusion_options.voxel_scale = ctx.options.tuning.base_voxel_scale;
+  fusion_options.max_extension_spacings = ctx.options.tuning.base_max_extension;
+  fusion_options.view_cameras = ctx.view_cameras;
+  return FuseRangeMeshes(views, fusion_options, ctx.progress);
+}
+
+void ObserveVertices(const EncodeContext& ctx, const TriangleMesh& base,
+                     const MotionModel& motion, const ShootingTarget& target,
+                     std::span<const RigidTransform> track, std::vector<char>* observed) {
+  std::vector<Eigen::Vector3f> posed, normals;
+  ShotLimits limits = ctx.seg.shot;
+  limits.max_distance = ctx.lengths.detail_max_distance;
+  PoseVertices(motion, track, base.positions, &posed);
+  ComputeVertexNormals(posed, base.triangles, &normals);
+  observed->resize(base.vertex_count(), 0);
+  tbb::parallel_for(std::size_t(0), posed.size(), [&](std::size_t v) {
+    if (!(*observed)[v] && !std::isnan(target.Shoot(posed[v], normals[v], limits))) {
+      (*observed)[v] = 1;
+    }
+  });
+}
+
+void MarkSurface(const EncodeContext& ctx, const TriangleMesh& base,
+                 const std::vector<char>& observed, MotionModel* motion,
+                 KeyGroupSummary* summary) {
+  motion->surface_triangles.resize(base.triangle_count());
+  std::size_t surface = 0;
+  for (std::size_t i = 0; i < base.triangle_count(); ++i) {
+    const Triangle& tri = base.triangles[i];
+    const int seen = observed[tri[0]] + observed[tri[1]] + observed[tri[2]];
+    motion->surface_triangles[i] = seen >= 2;
+    surface += seen >= 2;
+  }
+  summary->surface_share = double(surface) / double(base.triangle_count());
+  if (!ctx.options.hide_unseen) motion->surface_triangles.clear();
+}
+
+DataFit FitMeter::Measure(const std::vector<RigidTransform>& transforms, const FrameProxy& frame) {
+  PoseVertices(motion_, transforms, base_.positions, &posed_);
+  ComputeVertexNormals(posed_, base_.triangles, &normals_);
+  EvaluateSampleFrames(lattice_, lattice_.levels(), posed_, normals_, &samples_, &directions_);
+  DataFit fit = MeasureDataFit(samples_, frame.points, distance_, stray_distance_,
+                               directions_, SampleReach(samples_, triangles_));
+  if (frame.free_space && !samples_.empty()) {
+    // Farther in front of what a camera saw than a displacement reaches (along the normal,
+    // or past the edge of a view's data across the image), among the samples some camera
+    // can judge (a one-view rig judges fewer than a ring).
+    struct Counts {
+      std::size_t judged = 0, seen_through = 0;
+    };
+    const Counts counts = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, samples_.size(), 2048), Counts{},
+        [&](const tbb::blocked_range<std::size_t>& range, Counts partial) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const SeenFreeSpace::Verdict verdict =
+                frame.free_space->Judge(samples_[i], directions_[i], distance_,
+                                        judge_across_);
+            partial.judged += verdict != SeenFreeSpace::Verdict::kUnjudged;
+            partial.seen_through += verdict == SeenFreeSpace::Verdict::kSeenThrough;
+          }
+          return partial;
+        },
+        [](Counts a, const Counts& b) {
+          a.judged += b.judged;
+          a.seen_through += b.seen_through;
+          return a;
+        });
+    if (counts.judged > 0) {
+      fit.seen_through_share = double(counts.seen_through) / double(counts.judged);
+    }
+  }
+  return fit;
+}
+
+}  // namespace meshvid

@@ -18,16 +18,19 @@ $s1 << EOD
 2.4571 35.1836
 3.80949 35.1750
 6.0448 35.1754
+8.13766 35.1731
 EOD
 $s2 << EOD
 2.4571 35.1860
 3.80949 35.1808
 6.0448 35.1793
+8.13766 35.1781
 EOD
 $s3 << EOD
 2.4571 35.1891
 3.80949 35.1841
 6.0448 35.1836
+8.13766 35.1845
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -384,15 +384,17 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   ReportProgress(progress, "detail", frames, frames);
 
   const double key_groups = double(summary.key_groups.size());
-  double segments = 0, patches = 0;
+  double segments = 0, patches = 0, rigid_groups = 0;
   for (const KeyGroupSummary& k : summary.key_groups) {
     segments += k.segments;
     patches += k.patches;
+    rigid_groups += k.rigid_groups;
     summary.registered_share += k.registered_share / key_groups;
     summary.surface_share += k.surface_share / key_groups;
   }
   summary.segments = static_cast<int>(std::lround(segments / key_groups));
   summary.patches = static_cast<int>(std::lround(patches / key_groups));
+  summary.rigid_groups = static_cast<int>(std::lround(rigid_groups / key_groups));
   summary.base_vertices = summary.key_groups.front().base_vertices;
   const double total = double(samples);
   summary.filled_share = total > 0 ? double(filled) / total : 0;

@@ -350,6 +350,7 @@ struct EncodeSummary {
   std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
   int segments = 0;
   int patches = 0;              ///< patches over the unregistered vertices (after the segments)
+  int rigid_groups = 0;         ///< with --deform: rigid groups the nodes were joined into
   double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view (the rest are hidden)
   double filled_share = 0;      ///< displacement samples filled by interpolation

@@ -184,13 +184,10 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
 std::string MotionLine(const EncodeSummary& s, const EncoderOptions& options) {
   char line[256];
   if (options.tuning.deformation_tracking) {
-    double groups = 0;
-    for (const KeyGroupSummary& k : s.key_groups) groups += k.rigid_groups;
-    groups /= double(std::max<std::size_t>(1, s.key_groups.size()));
     std::snprintf(line, sizeof(line),
-                  "  motion        %d deformation nodes moving as %.0f rigid groups (means over "
+                  "  motion        %d deformation nodes moving as %d rigid groups (means over "
                   "key groups); %.1f%% of base triangles seen\n",
-                  s.segments, groups, 100 * s.surface_share);
+                  s.segments, s.rigid_groups, 100 * s.surface_share);
   } else {
     std::snprintf(line, sizeof(line),
                   "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d "

@@ -319,15 +319,54 @@ TEST(MotionBlend, SmoothingKeepsSteadyMotionAndDampsJitter) {
     tracks[f][0] = MakeTransform(0.05f * f, {0, 0, 1}, {0.01f * f, 0, 0});
   }
   auto steady = tracks;
-  SmoothTracks(2, &steady);
+  SmoothTracks(2, {}, &steady);
   for (int f = 0; f < 9; ++f) {
     EXPECT_LT(steady[f][0].rotation.angularDistance(tracks[f][0].rotation), 1e-4f);
     EXPECT_LT((steady[f][0].translation - tracks[f][0].translation).norm(), 1e-5f);
   }
   auto jittery = tracks;
   jittery[4][0].translation.y() = 0.03f;
-  SmoothTracks(1, &jittery);
+  SmoothTracks(1, {}, &jittery);
   EXPECT_NEAR(jittery[4][0].translation.y(), 0.01f, 1e-5f);
+}
+
+TEST(MotionBlend, SmoothingKeepsAPieceFarFromTheOriginInPlace) {
+  // A piece 28 units from the origin turning about its own centre, 0.1 rad a frame (a steady
+  // turn), and one jittering by +-0.1 rad about it (an ill-posed piece sliding along itself).
+  // Smoothed about the centre, the steady turn stays as solved and the jitter leaves the
+  // centre where it is; averaged about the origin, both moved it by about 0.09.
+  const Eigen::Vector3f centre(26.0f, 0.6f, 8.8f);
+  const Eigen::Vector3f axis = Eigen::Vector3f(0.3f, 1.0f, 0.2f).normalized();
+  auto turn_about_centre = [&](float angle) {
+    RigidTransform t;
+    t.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(angle, axis));
+    t.translation = centre - t.rotation * centre;
+    return t;
+  };
+  std::vector<std::vector<RigidTransform>> steady(3), jittery(3);
+  for (int f = 0; f < 3; ++f) {
+    steady[f] = {turn_about_centre(0.1f * f)};
+    jittery[f] = {turn_about_centre(f == 1 ? 0.1f : f == 2 ? -0.1f : 0.0f)};
+  }
+  const std::vector<Eigen::Vector3f> centres = {centre};
+  const RigidTransform solved = steady[1][0];
+  SmoothTracks(1, centres, &steady);
+  SmoothTracks(1, centres, &jittery);
+  const Eigen::Vector3f corner = centre + Eigen::Vector3f(0.3f, -0.2f, 0.1f);
+  EXPECT_LT((steady[1][0].Apply(corner) - solved.Apply(corner)).norm(), 1e-4f);
+  EXPECT_LT((jittery[1][0].Apply(centre) - centre).norm(), 1e-4f);
+  EXPECT_LT(jittery[1][0].rotation.angularDistance(Eigen::Quaternionf::Identity()), 1e-4f);
+}
+
+TEST(MotionBlend, PieceCentresAreTheirVerticesCentroids) {
+  const std::vector<Eigen::Vector3f> positions = {{0, 0, 0}, {2, 0, 0}, {0, 4, 0}, {0, 0, 6}};
+  const std::vector<std::int32_t> labels = {0, 0, 1, -1};
+  const std::vector<Eigen::Vector3f> centres = PieceCentres(positions, labels, 3);
+  ASSERT_EQ(centres.size(), 3u);
+  EXPECT_LT((centres[0] - Eigen::Vector3f(1, 0, 0)).norm(), 1e-6f);
+  EXPECT_LT((centres[1] - Eigen::Vector3f(0, 4, 0)).norm(), 1e-6f);
+  // A piece without vertices: the centroid of them all.
+  EXPECT_LT((centres[2] - Eigen::Vector3f(0.5f, 1, 1.5f)).norm(), 1e-6f);
 }
 
 /// A 4x4-quad plane subdivided to level 2: the lattice of the detail tests.

@@ -361,7 +361,8 @@ StatusOr<SegmentedMotion> SegmentKeyGroup(const EncodeContext& ctx,
     tracks[t - start] = TrackFrame(ctx, topology, segmented, tracker.get(), proxy,
                                    std::span(tracks.data(), std::size_t(t - start)));
   }
-  SmoothTracks(options.tuning.track_smoothing, &tracks);
+  SmoothTracks(options.tuning.track_smoothing,
+               PieceCentres(base.positions, segmented.labels, segmented.segment_count), &tracks);
   analysis->motion = BlendWeightsFromLabels(topology, segmented.labels,
                                             segmented.segment_count,
                                             /*smoothing=*/4,

@@ -107,24 +107,45 @@ MotionModel BlendWeightsFromLabels(const BaseTopology& topology,
   return model;
 }
 
-void SmoothTracks(int passes, std::vector<std::vector<RigidTransform>>* transforms) {
+std::vector<Eigen::Vector3f> PieceCentres(std::span<const Eigen::Vector3f> positions,
+                                          std::span<const std::int32_t> labels, int piece_count) {
+  Eigen::Vector3d all = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3f& p : positions) all += p.cast<double>();
+  all /= double(std::max<std::size_t>(1, positions.size()));
+  std::vector<Eigen::Vector3d> sums(piece_count, Eigen::Vector3d::Zero());
+  std::vector<std::size_t> counts(piece_count, 0);
+  for (std::size_t v = 0; v < labels.size() && v < positions.size(); ++v) {
+    if (labels[v] < 0 || labels[v] >= piece_count) continue;
+    sums[labels[v]] += positions[v].cast<double>();
+    ++counts[labels[v]];
+  }
+  std::vector<Eigen::Vector3f> centres(piece_count);
+  for (int s = 0; s < piece_count; ++s) {
+    centres[s] = (counts[s] > 0 ? Eigen::Vector3d(sums[s] / double(counts[s])) : all).cast<float>();
+  }
+  return centres;
+}
+
+void SmoothTracks(int passes, std::span<const Eigen::Vector3f> centres,
+                  std::vector<std::vector<RigidTransform>>* transforms) {
   const std::size_t frames = transforms->size();
   if (frames < 3) return;
   for (int pass = 0; pass < passes; ++pass) {
     std::vector<std::vector<RigidTransform>> next = *transforms;
     for (std::size_t t = 1; t + 1 < frames; ++t) {
       for (std::size_t s = 0; s < (*transforms)[t].size(); ++s) {
-        const RigidTransform& centre = (*transforms)[t][s];
-        Eigen::Vector4f q = centre.rotation.coeffs();
-        Eigen::Vector3f translation = centre.translation;
+        const Eigen::Vector3f c = s < centres.size() ? centres[s] : Eigen::Vector3f::Zero();
+        const RigidTransform& middle = (*transforms)[t][s];
+        Eigen::Vector4f q = middle.rotation.coeffs();
+        Eigen::Vector3f at = middle.Apply(c);  // where the frames put the centre, summed
         for (std::size_t u : {t - 1, t + 1}) {
           const RigidTransform& other = (*transforms)[u][s];
-          const Eigen::Vector4f c = other.rotation.coeffs();
-          q += c.dot(centre.rotation.coeffs()) < 0 ? Eigen::Vector4f(-c) : c;
-          translation += other.translation;
+          const Eigen::Vector4f o = other.rotation.coeffs();
+          q += o.dot(middle.rotation.coeffs()) < 0 ? Eigen::Vector4f(-o) : o;
+          at += other.Apply(c);
         }
         next[t][s].rotation = Eigen::Quaternionf(q.normalized());
-        next[t][s].translation = translation / 3.0f;
+        next[t][s].translation = at / 3.0f - next[t][s].rotation * c;
       }
     }
     transforms->swap(next);

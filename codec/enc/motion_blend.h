@@ -25,10 +25,20 @@ namespace meshvid {
 MotionModel BlendWeightsFromLabels(const BaseTopology& base, std::span<const std::int32_t> labels,
                                    int segment_count, int smoothing = 4, int soft_from = -1);
 
+/// Per piece of `labels` (0..piece_count-1), the centroid of its vertices in `positions`; a
+/// piece without vertices gets the centroid of them all.
+std::vector<Eigen::Vector3f> PieceCentres(std::span<const Eigen::Vector3f> positions,
+                                          std::span<const std::int32_t> labels, int piece_count);
+
 /// Smooths tracks `transforms[frame][segment]` over time: `passes` times, each frame's
-/// transform becomes the average of frames t-1, t, t+1 (rotations as normalised quaternion
-/// sums, signs aligned).
-void SmoothTracks(int passes, std::vector<std::vector<RigidTransform>>* transforms);
+/// transform becomes the average of frames t-1, t, t+1, taken about the segment's rest centre
+/// `centres[segment]` (none given: the origin): the centre goes to the mean of where the three
+/// put it, turned by their mean rotation (normalised quaternion sum, signs aligned). About the
+/// centre, the result does not depend on where the capture's origin lies: averaging rotation
+/// and translation apart moves a piece far from the origin by its distance times the
+/// rotations' spread squared.
+void SmoothTracks(int passes, std::span<const Eigen::Vector3f> centres,
+                  std::vector<std::vector<RigidTransform>>* transforms);
 
 }  // namespace meshvid
 

@@ -410,7 +410,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Correspondence and rigid solve rounds per tolerance step")
       ->capture_default_str();
   cmd->add_option("--smoothing", o.tuning.track_smoothing,
-                  "Passes of (t-1, t, t+1) smoothing of the rigid tracks")
+                  "Passes of (t-1, t, t+1) smoothing of the rigid tracks, each about its "
+                  "piece's centre")
       ->capture_default_str();
   cmd->add_option("--patch-vertices", o.tuning.patch_vertices,
                   "Vertices per patch that the segmentation's unregistered vertices are split "

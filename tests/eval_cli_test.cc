@@ -74,6 +74,28 @@ TEST_F(EvalCliTest, FrameRangeSelectsFrames) {
   EXPECT_EQ(j["frames"][0]["d1_psnr"], "inf");
 }
 
+TEST_F(EvalCliTest, RefFirstMeasuresAnExcerptAgainstTheWholeReference) {
+  WritePlaneSequence(dir_, "ref", 4, 0.0f, 4);
+  WritePlaneSequence(dir_, "excerpt", 2, 0.1f, 4);  // the reference's frames 1 and 2
+  const std::string command = "eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+                              dir_.File("excerpt{frame:04}.obj") + "' --samples 2000 --quiet";
+  const testing::CliRun unaligned = testing::RunMeshvid(command, dir_);
+  EXPECT_EQ(unaligned.exit_code, 1);
+  EXPECT_NE(unaligned.err.find("--ref-first N"), std::string::npos) << unaligned.err;
+  const testing::CliRun run = testing::RunMeshvid(
+      command + " --ref-first 1 --json '" + dir_.File("eval.json") + "'", dir_);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("test frame t against reference frame t + 1"), std::string::npos)
+      << run.out;
+  const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
+  EXPECT_EQ(j["settings"]["ref_first"], 1);
+  ASSERT_EQ(j["frames"].size(), 2u);
+  for (int t = 0; t < 2; ++t) {
+    EXPECT_EQ(j["frames"][t]["frame"], t);
+    EXPECT_EQ(j["frames"][t]["d1_psnr"], "inf");
+  }
+}
+
 TEST_F(EvalCliTest, FrameCountMismatchFails) {
   WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
   WritePlaneSequence(dir_, "test", 2, 0.0f, 4);

@@ -177,6 +177,45 @@ TEST(EvalSequenceTest, FrameCountMismatchIsAClearError) {
             StatusCode::kInvalidArgument);
 }
 
+TEST(EvalSequenceTest, RefFirstMeasuresTheTestFromALaterReferenceFrame) {
+  // A test encoded from the reference's frames 2..3 (planes z = 2.01, 3.01).
+  VectorSequence ref = Planes(5, 0.0f);
+  VectorSequence test = Planes(2, 2.01f);
+  const auto unaligned = EvaluateSequences(ref, test, SmallOptions());
+  ASSERT_EQ(unaligned.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(unaligned.status().message().find("--ref-first"), std::string::npos)
+      << unaligned.status().message();
+  EvalOptions options = SmallOptions();
+  options.ref_first = 2;
+  const auto result = EvaluateSequences(ref, test, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  EXPECT_EQ(result->ref_first, 2);
+  ASSERT_EQ(result->frames.size(), 2u);
+  // Measured and sampled as the same frames of a test as long as the reference.
+  VectorSequence whole_test = Planes(5, 0.01f);
+  EvalOptions whole = SmallOptions();
+  whole.first_frame = 2;
+  whole.end_frame = 4;
+  const auto expected = EvaluateSequences(ref, whole_test, whole);
+  ASSERT_TRUE(expected.ok());
+  for (int t = 0; t < 2; ++t) {
+    EXPECT_EQ(result->frames[t].frame, t);
+    EXPECT_NEAR(result->frames[t].accuracy_rms, 0.01, 1e-6);
+    EXPECT_DOUBLE_EQ(result->frames[t].d1_psnr, expected->frames[t].d1_psnr);
+    EXPECT_DOUBLE_EQ(result->frames[t].completeness_rms, expected->frames[t].completeness_rms);
+  }
+  EXPECT_DOUBLE_EQ(result->peak, expected->peak);  // the whole reference's
+  // The reference must hold the test's frames from ref_first on.
+  options.ref_first = 4;
+  const auto beyond = EvaluateSequences(ref, test, options);
+  ASSERT_EQ(beyond.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(beyond.status().message().find("1 frames from its frame 4 on"), std::string::npos)
+      << beyond.status().message();
+  options.ref_first = -1;
+  EXPECT_EQ(EvaluateSequences(ref, test, options).status().code(),
+            StatusCode::kInvalidArgument);
+}
+
 TEST(EvalSequenceTest, RangePeakOverrideAndCancel) {
   VectorSequence ref = Planes(4, 0.0f);
   VectorSequence test = Planes(4, 0.0f);

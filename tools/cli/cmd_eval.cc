@@ -27,6 +27,7 @@ struct EvalArguments {
   double coverage_tolerance = -1;
   double peak = -1;
   std::uint64_t seed = 1;
+  int ref_first = 0;
   int level = -1;
   bool quiet = false;
 };
@@ -42,8 +43,9 @@ int RunEval(const EvalArguments& args) {
   options.seed = args.seed;
   options.coverage_tolerance = args.coverage_tolerance;
   options.peak = args.peak;
+  options.ref_first = args.ref_first;
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*ref)->frame_count());
+    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*test)->frame_count());
     if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
     options.first_frame = range->first;
     options.end_frame = range->second;
@@ -87,7 +89,14 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--level", args->level,
                   "Level at which a .mvid test is decoded (default: the finest stored)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--frames", args->frames,
+                  "The test's frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--ref-first", args->ref_first,
+                  "The reference frame the test's frame 0 is measured against: N for a file\n"
+                  "encoded with --frames N:... from a capture of the whole reference (test\n"
+                  "frame t against reference frame N + t; the PSNR peak stays the whole\n"
+                  "reference's)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")
       ->default_val(200000)

@@ -72,6 +72,7 @@ std::string EvalResultToJson(const EvalResult& result) {
       {"test", result.test_description},
       {"first_frame", result.first_frame},
       {"end_frame", result.end_frame},
+      {"ref_first", result.ref_first},
       {"samples", result.samples},
       {"seed", result.seed},
       {"coverage_tolerance", result.coverage_tolerance},
@@ -102,6 +103,10 @@ std::string FormatEvalTable(const EvalResult& result) {
                 result.peak, result.coverage_tolerance, result.samples, kLabelWidth, "frame",
                 "D1 PSNR", "D2 PSNR", "accuracy", "complete", "Hausdorff", "coverage");
   std::string text = header;
+  if (result.ref_first != 0) {
+    text.insert(text.find('\n'), ", test frame t against reference frame t + " +
+                                      std::to_string(result.ref_first));
+  }
   for (const FrameMetrics& m : result.frames) text += FormatRow(std::to_string(m.frame), m);
   text += FormatRow("mean MSE", result.mean);
   text += FormatMeanOfFrames(result.mean_of_frames);

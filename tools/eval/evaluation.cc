@@ -83,18 +83,29 @@ PsnrMeanOfFrames MeanOfFramePsnrs(const std::vector<FrameMetrics>& frames) {
 StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
                                        const EvalOptions& options,
                                        const ProgressCallback& progress) {
-  const int ref_count = ref.frame_count();
+  const int ref_first = options.ref_first;
+  if (ref_first < 0) {
+    return InvalidArgumentError("the reference's first frame " + std::to_string(ref_first) +
+                                " is negative");
+  }
+  // The reference's frames from ref_first on, numbered as the test's.
+  const int ref_count = std::max(0, ref.frame_count() - ref_first);
   const int test_count = test.frame_count();
+  const std::string ref_frames =
+      ref_first == 0 ? std::to_string(ref.frame_count()) + " frames"
+                     : std::to_string(ref_count) + " frames from its frame " +
+                           std::to_string(ref_first) + " on";
   int first = options.first_frame;
   int end = options.end_frame;
   if (end < 0) {
-    if (ref_count != test_count) {
+    if (ref_first == 0 ? ref_count != test_count : ref_count < test_count) {
       return InvalidArgumentError(
-          "frame counts differ: the reference " + ref.description() + " has " +
-          std::to_string(ref_count) + " frames, the test " + test.description() + " has " +
-          std::to_string(test_count) + "; choose a common range with --frames A:B");
+          "frame counts differ: the reference " + ref.description() + " has " + ref_frames +
+          ", the test " + test.description() + " has " + std::to_string(test_count) +
+          "; choose a common range with --frames A:B, or with --ref-first N when the test "
+          "starts at the reference's frame N (encoded with --frames N:...)");
     }
-    end = ref_count;
+    end = test_count;
   }
   if (first < 0 || first >= end) {
     return InvalidArgumentError("empty frame range " + std::to_string(first) + ":" +
@@ -104,7 +115,7 @@ StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
     return InvalidArgumentError(
         "frame range " + std::to_string(first) + ":" + std::to_string(end) +
         " is not in both sequences: the reference " + ref.description() + " has " +
-        std::to_string(ref_count) + " frames, the test " + test.description() + " has " +
+        ref_frames + ", the test " + test.description() + " has " +
         std::to_string(test_count));
   }
 
@@ -113,6 +124,7 @@ StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
   result.test_description = test.description();
   result.first_frame = first;
   result.end_frame = end;
+  result.ref_first = ref_first;
   result.samples = options.samples;
   result.seed = options.seed;
   if (options.peak > 0) {
@@ -137,17 +149,18 @@ StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
     if (!ReportProgress(progress, "evaluate", t - first, total)) {
       return CancelledError("evaluation cancelled");
     }
-    StatusOr<TriangleMesh> ref_mesh = ref.Frame(t);
+    const int ref_frame = ref_first + t;
+    StatusOr<TriangleMesh> ref_mesh = ref.Frame(ref_frame);
     if (!ref_mesh.ok()) {
       return ref_mesh.status().WithContext("reference " + ref.description() + ", frame " +
-                                           std::to_string(t));
+                                           std::to_string(ref_frame));
     }
     StatusOr<TriangleMesh> test_mesh = test.Frame(t);
     if (!test_mesh.ok()) {
       return test_mesh.status().WithContext("test " + test.description() + ", frame " +
                                             std::to_string(t));
     }
-    metric_options.seed = MixSeed(options.seed, static_cast<std::uint64_t>(t));
+    metric_options.seed = MixSeed(options.seed, static_cast<std::uint64_t>(ref_frame));
     StatusOr<FrameMetrics> metrics = ComputeFrameMetrics(*ref_mesh, *test_mesh, metric_options);
     if (!metrics.ok()) return metrics.status().WithContext("frame " + std::to_string(t));
     metrics->frame = t;

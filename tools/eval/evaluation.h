@@ -36,10 +36,15 @@ struct PsnrMeanOfFrames {
 
 /// What to evaluate and how.
 struct EvalOptions {
-  /// Frames [first_frame, end_frame). end_frame < 0 means every frame, and then the reference
-  /// and the test must have the same frame count; otherwise both must hold the range.
+  /// The test's frames [first_frame, end_frame). end_frame < 0 means every frame, and then the
+  /// reference must have as many frames from ref_first on as the test has; otherwise both must
+  /// hold the range.
   int first_frame = 0;
   int end_frame = -1;
+  /// The reference frame the test's frame 0 is measured against (a file encoded with
+  /// `meshvid encode --frames N:...` starts at the capture's frame N): test frame t against
+  /// reference frame ref_first + t, sampled as a run over the whole reference samples it.
+  int ref_first = 0;
   std::size_t samples = 200000;  ///< area-weighted samples per surface and frame
   std::uint64_t seed = 1;        ///< sampling seed (mixed with the frame number)
   /// Absolute coverage tolerance; < 0 selects kDefaultCoverageToleranceRatio * peak.
@@ -55,6 +60,7 @@ struct EvalResult {
   std::string test_description;
   int first_frame = 0;
   int end_frame = 0;
+  int ref_first = 0;  ///< EvalOptions::ref_first
   std::size_t samples = 0;
   std::uint64_t seed = 0;
   double peak = 0;                ///< p used by the PSNRs
@@ -80,7 +86,8 @@ PsnrMeanOfFrames MeanOfFramePsnrs(const std::vector<FrameMetrics>& frames);
 
 /// Evaluates `test` against the ground truth `ref` frame by frame, reporting progress as
 /// "evaluate" (one unit per frame). Fails with a clear message if the frame counts disagree
-/// over the range, a frame cannot be read, or a frame has no area.
+/// over the range, a frame cannot be read, or a frame has no area. A result's frame numbers
+/// are the test's.
 StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
                                        const EvalOptions& options,
                                        const ProgressCallback& progress = {});

@@ -15,16 +15,16 @@ $s0 << EOD
 68.9138 52.5383
 EOD
 $s1 << EOD
-2.72975 52.4690
-4.24729 52.4674
+2.3568 52.4096
+3.81863 52.4097
 EOD
 $s2 << EOD
-2.72975 52.5386
-4.24729 52.5457
+2.3568 52.4783
+3.81863 52.4898
 EOD
 $s3 << EOD
-2.72975 52.5853
-4.24729 52.5879
+2.3568 52.5280
+3.81863 52.5342
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 99.3843 35.0310
 EOD
 $s1 << EOD
-5.52926 35.0997
-8.4574 35.0935
+3.19561 34.9903
+5.58576 34.9861
 EOD
 $s2 << EOD
-5.52926 35.1007
-8.4574 35.0993
+3.19561 34.9916
+5.58576 34.9861
 EOD
 $s3 << EOD
-5.52926 35.1089
-8.4574 35.1027
+3.19561 35.0013
+5.58576 34.9939
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

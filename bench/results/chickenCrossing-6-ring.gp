@@ -2,55 +2,31 @@
 # Run from this folder: gnuplot chickenCrossing-6-ring.gp
 set terminal pngcairo size 960,640 enhanced font "sans,10"
 set output "chickenCrossing-6-ring-rd.png"
-set title "chickenCrossing, 6 views (ring), 30 frames at 25 fps: D1 PSNR against rate" noenhanced
+set title "chickenCrossing, 6 views (ring), 60 frames at 25 fps: D1 PSNR against rate" noenhanced
 set xlabel "rate (Mbit/s at the capture rate, log scale)"
-set ylabel "D1 PSNR, of the mean MSE (dB)"
+set ylabel "D1 PSNR, mean of frames (dB)"
 set logscale x
 set grid xtics ytics mxtics
 set key outside right top noenhanced
 $s0 << EOD
-1.44007 43.6118
-2.55565 43.5882
-4.41915 43.5687
-6.49609 43.5672
+44.7381 44.9033
+74.4669 44.8140
+119.744 44.8029
+171.233 44.8019
 EOD
 $s1 << EOD
-1.44007 43.6923
-2.55565 43.6919
-4.41915 43.6521
-6.49609 43.6484
+2.93398 44.7122
+6.14754 44.6943
 EOD
 $s2 << EOD
-1.44007 43.7369
-2.55565 43.6986
-4.41915 43.6561
-6.49609 43.6438
+2.93398 44.7269
+6.14754 44.7072
 EOD
 $s3 << EOD
-23.7637 43.6369
+2.93398 44.7485
+6.14754 44.7304
 EOD
-$s4 << EOD
-1.06983 43.5904
-3.62336 43.5604
-8.51761 43.5637
-13.2405 43.5639
-EOD
-$s5 << EOD
-1.06983 43.7490
-3.62336 43.6825
-8.51761 43.6494
-13.2405 43.6491
-EOD
-$s6 << EOD
-1.06983 43.8654
-3.62336 43.7366
-8.51761 43.6447
-13.2405 43.6337
-EOD
-plot $s0 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
-     $s1 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
-     $s2 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#2ca02c" title "meshvid FFV1 L2 (lossless)", \
-     $s4 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s5 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s6 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
+     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -103,6 +103,32 @@ TEST(BaseMeshCoderTest, CoincidentVerticesAreToldApartByTheirTriangles) {
   ExpectMappedBack(twins, *small, 2.0f / ((1 << 16) - 1));
 }
 
+TEST(BaseMeshCoderTest, VerticesOneStepCannotPartGetAFinerStepNotTheSequentialCoder) {
+  // At 3 bits a 1026-vertex sphere puts several vertices in each quantisation cell, and
+  // nothing tells them all apart: edgebreaker is tried one bit finer, where they part.
+  const TriangleMesh sphere = testing::SphereMesh(4);
+  BaseMeshEncoding coarse;
+  coarse.position_bits = 3;
+  BaseMeshEncoding sequential_settings = coarse;
+  sequential_settings.try_edgebreaker = false;
+  auto sequential = EncodeBaseMesh(sphere, sequential_settings);
+  auto small = EncodeBaseMesh(sphere, coarse);
+  ASSERT_TRUE(small.ok() && sequential.ok());
+  EXPECT_EQ(sequential->position_bits, 3);
+  ASSERT_GT(small->position_bits, 3);
+  EXPECT_LE(small->position_bits, 3 + kEdgebreakerExtraBits);
+  EXPECT_LT(small->bytes.size(), sequential->bytes.size() / 2);
+  const float size = BoundingBox(sphere).sizes().maxCoeff();
+  ExpectMappedBack(sphere, *small, size / float((1 << small->position_bits) - 1));
+  // Where one step parts every vertex, the asked quantisation is kept.
+  BaseMeshEncoding fine;
+  fine.position_bits = 10;
+  auto kept = EncodeBaseMesh(sphere, fine);
+  ASSERT_TRUE(kept.ok());
+  EXPECT_EQ(kept->position_bits, 10);
+  EXPECT_FALSE(kept->vertex_in_decoded.empty());
+}
+
 TEST(BaseMeshCoderTest, DamagedStreamsFailCleanly) {
   auto encoded = EncodeBaseMesh(testing::MakeGridPlane(1.0f, 8));
   ASSERT_TRUE(encoded.ok());

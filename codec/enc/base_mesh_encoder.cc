@@ -50,6 +50,7 @@ StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEnc
                                          status.error_msg_string());
 
   EncodedBaseMesh result;
+  result.position_bits = settings.position_bits;
   result.bytes.assign(buffer.data(), buffer.data() + buffer.size());
   MESHVID_ASSIGN_OR_RETURN(result.decoded, DecodeBaseMesh(result.bytes));
   return result;
@@ -241,8 +242,13 @@ StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
   MESHVID_RETURN_IF_ERROR(CheckSettings(mesh, settings));
   if (settings.allow_reorder) return EncodeWith(mesh, settings, /*edgebreaker=*/true);
   if (settings.try_edgebreaker) {
-    StatusOr<EncodedBaseMesh> small = EncodeWith(mesh, settings, /*edgebreaker=*/true);
-    if (small.ok() && MatchDecodedOrder(mesh, settings.position_bits, &*small)) return small;
+    // A finer step parts vertices that one step could not tell apart.
+    const int finest = std::min(30, settings.position_bits + kEdgebreakerExtraBits);
+    for (BaseMeshEncoding finer = settings; finer.position_bits <= finest;
+         ++finer.position_bits) {
+      StatusOr<EncodedBaseMesh> small = EncodeWith(mesh, finer, /*edgebreaker=*/true);
+      if (small.ok() && MatchDecodedOrder(mesh, finer.position_bits, &*small)) return small;
+    }
   }
   return EncodeWith(mesh, settings, /*edgebreaker=*/false);
 }

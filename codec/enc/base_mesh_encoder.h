@@ -35,7 +35,13 @@ struct EncodedBaseMesh {
   std::vector<std::uint32_t> vertex_in_decoded;
   /// Per input triangle, its index in `decoded` (empty as above).
   std::vector<std::uint32_t> triangle_in_decoded;
+  int position_bits = 0;  ///< the quantisation the stream uses (see kEdgebreakerExtraBits)
 };
+
+/// Where edgebreaker's vertices cannot be matched to the input's at the asked quantisation
+/// (two vertices within a step that nothing tells apart), it is tried again with up to this
+/// many bits more before the sequential method (5x larger) is used.
+inline constexpr int kEdgebreakerExtraBits = 4;
 
 /// Codes positions and triangles with Draco and decodes the result again.
 StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,

@@ -15,16 +15,16 @@ $s0 << EOD
 37.1104 36.5962
 EOD
 $s1 << EOD
-2.15744 36.5080
-3.50066 36.4982
+1.78791 36.5183
+3.13543 36.5116
 EOD
 $s2 << EOD
-2.15744 36.5114
-3.50066 36.5067
+1.78791 36.5210
+3.13543 36.5185
 EOD
 $s3 << EOD
-2.15744 36.5157
-3.50066 36.5128
+1.78791 36.5269
+3.13543 36.5242
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 64.0333 62.0679
 EOD
 $s1 << EOD
-2.27138 62.2383
-3.42316 62.2937
+1.95346 62.1902
+3.08885 62.2712
 EOD
 $s2 << EOD
-2.27138 62.4945
-3.42316 62.5679
+1.95346 62.4493
+3.08885 62.5494
 EOD
 $s3 << EOD
-2.27138 62.5889
-3.42316 62.6458
+1.95346 62.5422
+3.08885 62.6173
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

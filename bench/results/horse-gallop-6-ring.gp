@@ -15,16 +15,16 @@ $s0 << EOD
 143.024 55.0420
 EOD
 $s1 << EOD
-3.13686 55.0021
-5.11273 55.0175
+2.65571 55.0067
+4.67253 55.0166
 EOD
 $s2 << EOD
-3.13686 55.2002
-5.11273 55.2575
+2.65571 55.2024
+4.67253 55.2594
 EOD
 $s3 << EOD
-3.13686 55.2873
-5.11273 55.3411
+2.65571 55.2916
+4.67253 55.3429
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

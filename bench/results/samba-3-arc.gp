@@ -15,16 +15,16 @@ $s0 << EOD
 68.3818 38.7496
 EOD
 $s1 << EOD
-1.92826 38.7449
-3.06901 38.7391
+1.67012 38.7429
+2.86008 38.7373
 EOD
 $s2 << EOD
-1.92826 38.7500
-3.06901 38.7503
+1.67012 38.7492
+2.86008 38.7507
 EOD
 $s3 << EOD
-1.92826 38.7593
-3.06901 38.7555
+1.67012 38.7529
+2.86008 38.7538
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 113.724 56.2880
 EOD
 $s1 << EOD
-2.29873 56.1309
-3.86264 56.1460
+1.99061 56.1101
+3.58007 56.1446
 EOD
 $s2 << EOD
-2.29873 56.3001
-3.86264 56.3590
+1.99061 56.2848
+3.58007 56.3535
 EOD
 $s3 << EOD
-2.29873 56.3970
-3.86264 56.4550
+1.99061 56.4002
+3.58007 56.4491
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

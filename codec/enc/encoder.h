@@ -64,8 +64,8 @@ struct EncoderTuning {
   /// Draco position quantisation of the base meshes, bits per coordinate of the bounding box
   /// (the displacements correct what it moves along the normals). Samba, 3 views, 30 frames:
   /// 12 bits code each base in 39% fewer bytes than 16 for 0.01 mm more RMS error. 10 bits
-  /// (bench/ENCODE.md, every pair at 60 frames, HEVC q40): bases 22-25% and files 7-9%
-  /// smaller than at 12, the same key groups, D1 within 0.005 dB.
+  /// (bench/ENCODE.md, seven pairs at 60 frames, HEVC q40): bases 21-25% and files 7-9%
+  /// smaller than at 12, the same key groups, D1 within 0.01 dB; 9 and 8 bits gain nothing.
   int base_position_bits = 10;
   /// Quantisation step of the transform tracks' translations (0: kTransformStepFraction of
   /// the size). The rotation step is the translation step over the reach (the first frame's

@@ -164,7 +164,7 @@ class ArrayFrameSource : public FrameSource {
 };
 
 py::bytes Encode(const py::sequence& frames, const std::string& path, int quality,
-                 const std::string& codec, int levels, double key_group_threshold,
+                 const std::string& codec, int levels, double rebase_gain_db,
                  int max_key_groups, double frame_rate, int gof_size, std::size_t base_vertices,
                  int effort, const py::object& progress) {
   std::vector<std::vector<TriangleMesh>> meshes;
@@ -192,7 +192,7 @@ py::bytes Encode(const py::sequence& frames, const std::string& path, int qualit
   options.codec = *video;
   options.quality = quality;
   options.levels = levels;
-  options.key_group_threshold = key_group_threshold;
+  options.rebase_gain_db = rebase_gain_db;
   options.max_key_groups = max_key_groups;
   options.gof_size = gof_size;
   options.base_vertices = base_vertices;
@@ -283,7 +283,7 @@ PYBIND11_MODULE(meshvid, m) {
       }, py::arg("source"), "Opens a .mvid from a path or from bytes.");
 
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
-        py::arg("codec") = "hevc", py::arg("levels") = 2, py::arg("key_group_threshold") = 0.02,
+        py::arg("codec") = "hevc", py::arg("levels") = 2, py::arg("rebase_gain_db") = kDefaultRebaseGainDb,
         py::arg("max_key_groups") = 0, py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32,
         py::arg("base_vertices") = 2000, py::arg("effort") = 4, py::arg("progress") = py::none(),
         "Encodes a capture: `frames` is a list of frames, each a list of views "

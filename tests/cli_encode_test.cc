@@ -77,17 +77,24 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
       EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 0);
     }
   }
-  // The embedded deformation's settings without --deform: the encode runs and says they are
-  // not read, quiet or not.
+  // The embedded deformation's settings with --deform 0, and the segmentation's with the
+  // default deformation: the encode runs and says they are not read, quiet or not.
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
-                                "' --deform-backward 1 --rigidity 0.2 -q",
+                                "' --deform 0 --deform-backward 1 --rigidity 0.2 -q",
                             dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("warning: --deform-backward has no effect without --deform 1"),
+  EXPECT_NE(run.err.find("warning: --deform-backward has no effect with --deform 0"),
             std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("warning: --rigidity has no effect"), std::string::npos) << run.err;
   EXPECT_EQ(run.err.find("--node-spacing"), std::string::npos) << run.err;  // not given
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --patch-vertices 20 -q",
+                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("warning: --patch-vertices has no effect with --deform 1"),
+            std::string::npos)
+      << run.err;
   std::filesystem::remove(out);
   run = testing::RunMeshvid("encode --help", dir);
   EXPECT_EQ(run.exit_code, 0);
@@ -97,6 +104,8 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
 /// Simulates `frames` frames of the arm-block scene and encodes them.
 class ArmBlockEncode : public ::testing::Test {
  protected:
+  // The suite's shared encode uses the piecewise-rigid segmentation (--deform 0): its tests
+  // are of the segments; the deformation's are the tests that pass --deform 1.
   static void SetUpTestSuite() {
     if (!testing::HaveMeshvidCli()) return;
     dir_ = new testing::TempDir;
@@ -107,7 +116,7 @@ class ArmBlockEncode : public ::testing::Test {
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
     const testing::CliRun enc = testing::RunMeshvid(
         "encode '" + dir_->File("cap/manifest.json") + "' -o '" + dir_->File("arm.mvid") +
-            "' --levels 2 --summary-json '" + dir_->File("summary.json") + "'",
+            "' --deform 0 --levels 2 --summary-json '" + dir_->File("summary.json") + "'",
         *dir_);
     encode_exit_ = enc.exit_code;
     encode_err_ = enc.err;
@@ -254,7 +263,8 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
   const std::string mvid = dir_->File("arm-deform.mvid");
   const testing::CliRun enc = testing::RunMeshvid(
       "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
-          "' --deform 1 --rigid-groups 1 --summary-json '" + dir_->File("deform.json") + "'",
+          "' --deform 1 --rigid-groups 1 --rebase-gain 4 --summary-json '" +
+          dir_->File("deform.json") + "'",
       *dir_);
   ASSERT_EQ(enc.exit_code, 0) << enc.err;
   EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;  // --rigid-groups is read
@@ -270,10 +280,14 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
     const bool ended_by_capture = group["cut_unexplained"].get<double>() == -1;
     EXPECT_EQ(group["cut_seen_through"].get<double>() == -1, ended_by_capture);
     EXPECT_EQ(group["cut_farthest_growth"].get<double>() == -1, ended_by_capture);
+    EXPECT_EQ(group["cut_loss_db"].get<double>() == -1, ended_by_capture);
     // Tracked forwards only (no --deform-backward): every key group starts at its key frame.
     EXPECT_EQ(group["key_frame"].get<int>(), group["first_frame"].get<int>());
   }
   EXPECT_EQ(summary["key_groups"].back()["cut_farthest_growth"].get<double>(), -1);
+  // The groups are judged over the longest key group's frames; --rebase-gain 4 lets a key group
+  // hold through more of the arm's fast swing (at gains 0 and 1 none holds more than 2 frames,
+  // whose grouping says little). The hand, the smallest piece, is held to 85% there.
   // The arm bends at the elbow and turns at the wrist: its rigid pieces are the upper arm,
   // the forearm and the hand. The same code gives other key groups on another machine (not
   // traced; the simulator's and the encoder's ray casts and parallel sums are the likely
@@ -284,7 +298,7 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
   EXPECT_GE(shares["block"], 0.9);
   EXPECT_GE(shares["upper_arm"], 0.9);
   EXPECT_GE(shares["forearm"], 0.9);
-  EXPECT_GE(shares["hand"], 0.9);
+  EXPECT_GE(shares["hand"], 0.85);
   // The whole arm, as issue 4 counted it, for the record (81.4% and 49.4% on those machines).
   shares = PartSharesInOneGroup(mvid, ArmBlockVertexParts());
   EXPECT_GE(shares["arm"], 0.4);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include <tbb/blocked_range.h>
@@ -15,6 +16,7 @@ namespace {
 
 struct Sums {
   double squares = 0;
+  double excess_squares = 0;
   std::size_t unexplained = 0;
 };
 
@@ -46,7 +48,7 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   if (data_points.empty()) return fit;
   if (surface_samples.empty()) {
     fit.unexplained_share = 1;
-    fit.rms_distance = std::numeric_limits<double>::infinity();
+    fit.rms_distance = fit.excess_mean_square = std::numeric_limits<double>::infinity();
     return fit;
   }
   const PointCloud cloud{surface_samples};
@@ -56,7 +58,8 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
   const float across_limit =
       along_normals ? representable_distance + SampleSpacing(tree, surface_samples) : 0;
   const bool reach_per_sample = sample_reach.size() == surface_samples.size();
-  const Sums sums = tbb::parallel_reduce(
+  // Deterministic: the sums feed the key-group decision, which must not depend on the threads.
+  const Sums sums = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, data_points.size(), 2048), Sums{},
       [&](const tbb::blocked_range<std::size_t>& range, Sums partial) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -73,19 +76,26 @@ DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                     ? std::max(across_limit, representable_distance + sample_reach[nearest])
                     : across_limit;
             partial.unexplained += along > representable_distance || across > limit;
+            const float beyond_along = std::max(0.0f, along - representable_distance);
+            const float beyond_across = std::max(0.0f, across - limit);
+            partial.excess_squares += beyond_along * beyond_along + beyond_across * beyond_across;
           } else {
             partial.unexplained += squared > limit_squared;
+            const float beyond = std::max(0.0f, std::sqrt(squared) - representable_distance);
+            partial.excess_squares += beyond * beyond;
           }
         }
         return partial;
       },
       [](Sums a, const Sums& b) {
         a.squares += b.squares;
+        a.excess_squares += b.excess_squares;
         a.unexplained += b.unexplained;
         return a;
       });
   fit.unexplained_share = double(sums.unexplained) / double(data_points.size());
   fit.rms_distance = std::sqrt(sums.squares / double(data_points.size()));
+  fit.excess_mean_square = sums.excess_squares / double(data_points.size());
   // The other way: surface samples with no data point within the stray distance.
   const PointCloud data{data_points};
   const PointTree data_tree(3, data,
@@ -130,15 +140,27 @@ std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
   return reach;
 }
 
-bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold,
+double DecodedMeanSquare(const DataFit& fit, double representable_distance) {
+  const double range_squared = representable_distance * representable_distance;
+  const double floor = kDecodedErrorFloor * kDecodedErrorFloor * range_squared;
+  return floor + fit.excess_mean_square + fit.seen_through_share * range_squared;
+}
+
+double TrackingLossDb(const DataFit& key_frame, const DataFit& frame,
+                      double representable_distance) {
+  if (frame.points == 0) return 0;
+  const double tracked = DecodedMeanSquare(frame, representable_distance);
+  const double fresh = DecodedMeanSquare(key_frame, representable_distance);
+  if (!std::isfinite(tracked)) return std::numeric_limits<double>::infinity();
+  if (!std::isfinite(fresh) || tracked <= fresh) return 0;
+  return 10 * std::log10(tracked / fresh);
+}
+
+bool StillExplains(const DataFit& key_frame, const DataFit& frame,
+                   double representable_distance, double allowed_loss_db,
                    double farthest_growth) {
   if (frame.points == 0) return true;
-  return frame.unexplained_share <=
-             std::min(key_frame.unexplained_share, kMostUnexplainedAtKeyFrame) + threshold &&
-         frame.stray_share <=
-             std::min(key_frame.stray_share, kMostUnexplainedAtKeyFrame) + threshold &&
-         frame.seen_through_share <=
-             std::min(key_frame.seen_through_share, kMostUnexplainedAtKeyFrame) + threshold &&
+  return TrackingLossDb(key_frame, frame, representable_distance) <= allowed_loss_db &&
          frame.farthest_from_data <= key_frame.farthest_from_data + farthest_growth;
 }
 

@@ -18,6 +18,11 @@ struct DataFit {
   /// surface's displacements cannot reach, 0..1.
   double unexplained_share = 0;
   double rms_distance = 0;  ///< root mean square point-to-surface distance (sample-based)
+  /// Mean over the points of the squared distance by which each lies beyond what the
+  /// surface's displacements reach (along the normal past the representable distance, or
+  /// across past the surface's edge; 0 for a point within): the error the decoded surface
+  /// keeps at the data, whatever the displacements code.
+  double excess_mean_square = 0;
   std::size_t points = 0;   ///< points measured (0: the frame had no data)
   /// Share of the surface samples farther than the stray distance from every data point:
   /// surface the motion threw where no data is (a closed body's unseen side stays nearer).
@@ -56,14 +61,33 @@ std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
 /// 0.0, arm-block 0.005, horse-gallop 0.05-0.09; a failed horse-gallop fusion 0.92.
 inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 
-/// Whether the tracked surface still explains a frame: its unexplained share, its stray
-/// share and its seen-through share have each grown by at most `threshold` over the key
-/// frame's (where the base was fused from the data itself), counted as at most
-/// kMostUnexplainedAtKeyFrame (a key frame whose fusion failed does not excuse the frames
-/// after it); and no part of the surface is farther from the data than the key frame's
-/// farthest plus `farthest_growth` (a patch the motion threw away, however small). A frame
-/// without data is explained (nothing contradicts the motion).
-bool StillExplains(const DataFit& key_frame, const DataFit& frame, double threshold,
+/// The decoded surface's error at data the displacements reach, as a share of the
+/// displacement range: sensor noise and the video's quantisation (about 1 mm on a 1 cm range
+/// on the shared captures). It keeps the loss estimate below finite where a frame's data all
+/// lie within reach.
+inline constexpr double kDecodedErrorFloor = 0.1;
+
+/// The mean square error the decoded surface is estimated to keep at a frame's data when
+/// posed as `fit` measured it, with displacements reaching `representable_distance`: the data
+/// beyond their reach (DataFit::excess_mean_square), the surface lying where a camera saw
+/// through (each such sample at least one range off), and the floor (kDecodedErrorFloor).
+double DecodedMeanSquare(const DataFit& fit, double representable_distance);
+
+/// The estimated D1 loss, in dB, of coding a frame with the key group's tracked base (`frame`,
+/// its fit) rather than with a fresh base fused from the frame itself, which is estimated to
+/// fit its frame as the key frame's base fits the key frame (`key_frame`): 10 log10 of the
+/// ratio of their DecodedMeanSquare. 0 for a frame without data (nothing contradicts the
+/// motion); never negative.
+double TrackingLossDb(const DataFit& key_frame, const DataFit& frame,
+                      double representable_distance);
+
+/// Whether a tracked frame stays in its key group: its estimated loss against a fresh base
+/// (TrackingLossDb) is at most `allowed_loss_db`, the D1 a fresh base would have to gain to be
+/// worth its bytes; and no part of the surface is farther from the data than the key frame's
+/// farthest plus `farthest_growth` (a patch the motion threw away, however small, which the
+/// sample-based estimate does not see). A frame without data stays.
+bool StillExplains(const DataFit& key_frame, const DataFit& frame,
+                   double representable_distance, double allowed_loss_db,
                    double farthest_growth);
 
 }  // namespace meshvid

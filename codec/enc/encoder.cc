@@ -88,9 +88,8 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.tuning.key_group_window < 2) {
     return bad("tuning.key_group_window must be at least 2 frames");
   }
-  if (!(o.key_group_threshold >= 0 && o.key_group_threshold <= 1) &&
-      o.key_group_threshold != -1) {
-    return bad("key_group_threshold must be in [0, 1] (or -1: automatic)");
+  if (!(o.rebase_gain_db >= 0 && o.rebase_gain_db <= 100)) {
+    return bad("rebase_gain_db must be in [0, 100] dB");
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
   if (o.tuning.deform_backward_frames < 0) {
@@ -234,6 +233,10 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
 }
 
 }  // namespace
+
+double RebaseGainDb(const EncoderOptions& options) {
+  return options.rebase_gain_db * std::exp2((40.0 - options.quality) / 20.0);
+}
 
 int QualityToQp(VideoCodec codec, int quality) {
   const double fraction = 1.0 - std::clamp(quality, 0, 100) / 100.0;

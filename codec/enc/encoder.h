@@ -152,12 +152,14 @@ struct EncoderTuning {
   // --- non-rigid tracking (deformation_tracking.h; docs/encoder-method.md section 3.4)
   /// Track a key group's base with an embedded deformation (nodes over the base surface,
   /// every vertex blended over its nearest nodes, solved frame by frame to the data with
-  /// neighbouring nodes held together; the file stores the nodes, MOTN version 3) instead of
-  /// the multi-frame piecewise-rigid segmentation and its segment and graph trackers.
-  bool deformation_tracking = false;
+  /// neighbouring nodes held together; the file stores the nodes, MOTN version 3); false:
+  /// the multi-frame piecewise-rigid segmentation and its segment and graph trackers. The
+  /// deformation keeps key groups longer at the same D1 on every shared pair
+  /// (bench/KEYGROUPS.md).
+  bool deformation_tracking = true;
   /// Distance between the deformation's nodes along the base surface (0: 4% of the size,
   /// about 220 nodes on samba's 2,500-vertex base). Measured on samba 6-ring (60 frames,
-  /// key_group_threshold 0.005): 2.6% made 20 key groups but 53/60 frames within 1.25x of the
+  /// key groups ended by the former share rule at 0.005): 2.6% made 20 key groups but 53/60 frames within 1.25x of the
   /// baseline's accuracy, 4% 29 and 57/60, 5.2% 30 and 55/60.
   double node_spacing = 0;
   /// Weight of neighbouring nodes agreeing on each other's positions, against the data
@@ -253,18 +255,8 @@ struct EncoderTuning {
 /// a fresh base (0.03 dB less D1); the correspondence distance (8%) let the flap through.
 inline constexpr float kSegmentationFarthestGrowth = 4;
 
-/// The key-group threshold (EncoderOptions::key_group_threshold) of the piecewise-rigid
-/// segmentation: measured over 60 frames of samba on the 3-view arc (bench/RESULTS.md).
-inline constexpr double kSegmentationKeyGroupThreshold = 0.02;
-/// The key-group threshold of the embedded deformation, which follows the data more closely
-/// and so is held to it more strictly: at 0.02 samba 6-ring (60 frames) made 11 key groups but
-/// 34/60 frames within 1.25x of the baseline's accuracy; at 0.01, 19 and 44/60; at 0.005, 29
-/// and 58/60.
-/// Measured with free space judged at a sample's pixel alone. Judged across the tolerance's
-/// footprint too (SeenFreeSpace::Judge's `across_too`), 0.01 against 0.005 on five pairs
-/// (bench/DEFORM.md): 11-29% fewer key groups and 2-14% fewer bytes, but 1-7 frames of each
-/// pair above 1.25x the accuracy RMS (up to 3.8x) and single frames up to 2.3 dB lower.
-inline constexpr double kDeformationKeyGroupThreshold = 0.005;
+/// The default of EncoderOptions::rebase_gain_db (bench/KEYGROUPS.md).
+inline constexpr double kDefaultRebaseGainDb = 2.0;
 
 /// Every setting of the encoder: the few a user chooses, and the internals in `tuning`.
 struct EncoderOptions {
@@ -287,13 +279,13 @@ struct EncoderOptions {
   int quality = 40;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
-  // --- key groups (a fresh base where tracking no longer explains the data)
-  /// A new key group starts at a frame whose captured points farther from the tracked base
-  /// than the displacement range (tuning.detail_max_distance) exceed the key frame's share by more
-  /// than this (0..1). Smaller: more key groups, closer to per-frame fusion. -1: automatic,
-  /// kDeformationKeyGroupThreshold with tuning.deformation_tracking, else
-  /// kSegmentationKeyGroupThreshold (each measured with its tracker).
-  double key_group_threshold = -1;
+  // --- key groups (a fresh base where it is worth its bytes)
+  /// The D1 (dB) a fresh base must be estimated to gain over the tracked one at a frame for a
+  /// new key group to start there, at quality 40; it doubles every 20 quality steps below and
+  /// halves every 20 above (RebaseGainDb), as a video encoder's lambda follows its quantiser.
+  /// The gain is estimated from the frame's data (TrackingLossDb): what the tracked base's
+  /// displacements cannot reach, and the surface it leaves where a camera saw through.
+  double rebase_gain_db = kDefaultRebaseGainDb;
   /// Most key groups (0: no limit). 1 keeps one base and one connectivity for the whole
   /// capture, as the paper does (for editing).
   int max_key_groups = 0;
@@ -303,6 +295,9 @@ struct EncoderOptions {
   /// The algorithm's internals (defaults measured; see EncoderTuning).
   EncoderTuning tuning;
 };
+
+/// The gain a fresh base must bring at `quality` (EncoderOptions::rebase_gain_db at 40).
+double RebaseGainDb(const EncoderOptions& options);
 
 /// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).
 int QualityToQp(VideoCodec codec, int quality);
@@ -329,8 +324,13 @@ struct KeyGroupSummary {
   /// Share of the key frame's base surface in front of what a camera saw (as cut_seen_through).
   double key_frame_seen_through = 0;
   double worst_unexplained = 0;      ///< the same, at the worst frame kept in the key group
-  /// At the frame that ended the key group (the next key frame), or -1 when the capture (or
-  /// max_key_groups) ended it.
+  /// The largest estimated D1 loss (dB) of a frame kept against a fresh base's
+  /// (TrackingLossDb): what the key group saved bases for.
+  double worst_loss_db = 0;
+  /// At the frame that ended the key group (the next key frame), the estimated D1 a fresh base
+  /// gains there (dB), or -1 when the capture (or max_key_groups) ended it.
+  double cut_loss_db = -1;
+  /// At that frame, the share of its points beyond the displacements' reach, or -1 as above.
   double cut_unexplained = -1;
   /// At that frame, the share of the tracked surface lying where a camera saw through
   /// (DataFit::seen_through_share), or -1 as above.

@@ -497,10 +497,12 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   auto explained = [&](int t, const FrameProxy& frame) {
     const DataFit fit = meter->Measure(tracks[t - start], frame);
     if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-      RecordCut(key_fit, fit, &summary);
+      RecordCut(ctx, key_fit, fit, &summary);
       return false;
     }
     summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
+        summary.worst_loss_db =
+            std::max(summary.worst_loss_db, LossOfTrackedFrame(ctx, key_fit, fit));
     return true;
   };
   SegmentedMotion segmented;
@@ -526,6 +528,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     summary.key_frame_unexplained = key_fit.unexplained_share;
     summary.key_frame_seen_through = key_fit.seen_through_share;
     summary.worst_unexplained = key_fit.unexplained_share;
+    summary.worst_loss_db = 0;
     ClearCut(&summary);
     tracker = MakeTracker(ctx, topology, segmented);
     kept = stop;

@@ -9,30 +9,26 @@
 #include "codec/enc/surface_fusion.h"
 
 namespace meshvid {
-namespace {
-
-/// The key-group threshold in force (EncoderOptions::key_group_threshold; -1: by tracker).
-double KeyGroupThreshold(const EncoderOptions& options) {
-  if (options.key_group_threshold >= 0) return options.key_group_threshold;
-  return options.tuning.deformation_tracking ? kDeformationKeyGroupThreshold
-                                             : kSegmentationKeyGroupThreshold;
-}
-
-}  // namespace
-
 bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
-  return StillExplains(key_fit, fit, KeyGroupThreshold(ctx.options),
+  return StillExplains(key_fit, fit, ctx.lengths.detail_max_distance, RebaseGainDb(ctx.options),
                        ctx.lengths.farthest_growth);
 }
 
-void RecordCut(const DataFit& key_fit, const DataFit& fit, KeyGroupSummary* summary) {
+double LossOfTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
+  return TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
+}
+
+void RecordCut(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+               KeyGroupSummary* summary) {
+  summary->cut_loss_db = LossOfTrackedFrame(ctx, key_fit, fit);
   summary->cut_unexplained = fit.unexplained_share;
   summary->cut_seen_through = fit.seen_through_share;
   summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
 }
 
 void ClearCut(KeyGroupSummary* summary) {
-  summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth = -1;
+  summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth =
+      summary->cut_loss_db = -1;
 }
 
 StatusOr<TriangleMesh> FuseFrame(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,

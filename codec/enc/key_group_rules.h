@@ -1,6 +1,6 @@
 // The key-group rule and the figures both of a key group's trackers share (internal to the
-// encoder): whether a tracked frame still explains its data against the key frame
-// (FitMeter, TrackedFrameExplained), what ended a key group, which base triangles some view
+// encoder): whether a fresh base is worth its bytes at a tracked frame (FitMeter,
+// TrackedFrameExplained), what ended a key group, which base triangles some view
 // saw, and a frame's views fused as a key frame's base is.
 #ifndef MESHVID_CODEC_ENC_KEY_GROUP_RULES_H_
 #define MESHVID_CODEC_ENC_KEY_GROUP_RULES_H_
@@ -21,13 +21,18 @@
 
 namespace meshvid {
 
-/// Whether a tracked frame's fit still explains its data against the key frame's, by the
-/// key-group rule in force (StillExplains with the threshold and the farthest growth).
+/// Whether a tracked frame stays in its key group: a fresh base would not gain the D1 its
+/// bytes are worth at the quality (StillExplains with RebaseGainDb and the farthest growth).
 bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit);
 
-/// Records in `summary` what ended its key group: the rules' figures of the tracked frame
-/// whose `fit` no longer explained its data, against the key frame's `key_fit`.
-void RecordCut(const DataFit& key_fit, const DataFit& fit, KeyGroupSummary* summary);
+/// The estimated D1 loss (dB) of a tracked frame's `fit` against a fresh base's, estimated by
+/// the key frame's `key_fit` (TrackingLossDb at the displacement range).
+double LossOfTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit);
+
+/// Records in `summary` what ended its key group: the figures of the tracked frame whose
+/// `fit` a fresh base was worth at, against the key frame's `key_fit`.
+void RecordCut(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+               KeyGroupSummary* summary);
 
 /// Clears them (-1): no frame has ended the key group.
 void ClearCut(KeyGroupSummary* summary);

@@ -48,7 +48,7 @@ Status WithFlagNames(const Status& status) {
       {"base_voxel_scale", "--base-voxel-scale"},
       {"base_ahead", "--base-ahead"},
       {"base_max_extension", "--base-extension"},
-      {"key_group_threshold", "--key-group-threshold"},
+      {"rebase_gain_db", "--rebase-gain"},
       {"max_key_groups", "--max-key-groups"},
       {"key_group_window", "--key-group-window"},
       {"farthest_growth", "--farthest-growth"},
@@ -156,6 +156,8 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"key_frame_unexplained", k.key_frame_unexplained},
                                {"key_frame_seen_through", k.key_frame_seen_through},
                                {"worst_unexplained", k.worst_unexplained},
+                               {"worst_loss_db", k.worst_loss_db},
+                               {"cut_loss_db", k.cut_loss_db},
                                {"cut_unexplained", k.cut_unexplained},
                                {"cut_seen_through", k.cut_seen_through},
                                {"cut_farthest_growth", k.cut_farthest_growth}});
@@ -202,7 +204,8 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
   const MvidWriteStats& b = s.stats;
   std::fprintf(stderr,
                "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
-               "  key groups    %zu (mean %.1f frames; a fresh base where tracking lost the data)\n"
+               "  key groups    %zu (mean %.1f frames; a fresh base where it gains more D1 than "
+               "its bytes are worth)\n"
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
                "%s"
                "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
@@ -281,8 +284,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   EncoderOptions& o = args->options;
   CLI::App* cmd = app.add_subcommand(
       "encode",
-      "Encode a multi-view capture into a .mvid: a base mesh (fused from frame 0 or given), "
-      "piecewise-rigid motion found by a multi-frame segmentation, and the fused surface "
+      "Encode a multi-view capture into a .mvid: per key group a base mesh (fused from its "
+      "first frame or given), its motion (an embedded deformation tracked frame by frame, or "
+      "with --deform 0 a multi-frame piecewise-rigid segmentation), and the fused surface "
       "detail as a displacement video. Lengths default to fractions of frame 0's size.");
   cmd->add_option("CAPTURE", args->capture,
                   "The capture: a manifest.json, a file pattern with {frame} and {view} "
@@ -330,12 +334,14 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "base ends where a camera saw through it (a sheet's open edge), and a key "
                   "group ends where its tracked surface lies where a camera saw through")
       ->capture_default_str();
-  cmd->add_option("--key-group-threshold", o.key_group_threshold,
-                  "Start a new key group (a fresh base fused from that frame) where the share "
-                  "of captured points the tracked base cannot reach (farther than the "
-                  "displacement range), or of its surface lying where a camera saw through "
-                  "(--free-space), grows by more than this over its key frame's, 0..1 (-1: "
-                  "0.005 with --deform, 0.02 without)")
+  cmd->add_option("--rebase-gain", o.rebase_gain_db,
+                  "Start a new key group (a fresh base fused from that frame) only where it is "
+                  "estimated to gain more than this D1, in dB, over the tracked base: from the "
+                  "captured points the tracked base's displacements cannot reach and its "
+                  "surface lying where a camera saw through (--free-space). Given at quality "
+                  "40; doubled every 20 quality steps below, halved every 20 above. Smaller: "
+                  "more key groups, closer to per-frame fusion; 0: a new key group wherever "
+                  "tracking loses anything")
       ->capture_default_str();
   cmd->add_option("--max-key-groups", o.max_key_groups,
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
@@ -462,7 +468,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--deform", o.tuning.deformation_tracking,
                   "Track each key group's base as an embedded deformation (nodes over its "
                   "surface, each vertex blended over its nearest nodes, neighbours held "
-                  "together) instead of the piecewise-rigid segmentation")
+                  "together); 0: the multi-frame piecewise-rigid segmentation instead")
       ->capture_default_str();
   cmd->add_option("--node-spacing", o.tuning.node_spacing,
                   "With --deform, distance between the deformation's nodes along the surface "
@@ -546,21 +552,28 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--summary-json", args->summary_json,
                   "Also write the summary (bytes per stream, rate, timings) as JSON");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
-  // The embedded deformation's settings, which the segmentation does not read.
-  std::vector<const CLI::Option*> deform_only;
-  for (const char* name : {"--node-spacing", "--rigidity", "--coarse-stiffness", "--point-weight",
-                           "--rigid-groups", "--deform-fused", "--deform-reacquire",
-                           "--deform-backward", "--deform-iterations",
-                           "--deform-first-iterations"}) {
-    deform_only.push_back(cmd->get_option(name));
-  }
-  cmd->callback([args, exit_code, deform_only] {
-    if (!args->options.tuning.deformation_tracking) {
-      for (const CLI::Option* option : deform_only) {
-        if (option->count() == 0) continue;
-        std::fprintf(stderr, "meshvid: warning: %s has no effect without --deform 1\n",
-                     option->get_name().c_str());
-      }
+  // The embedded deformation's settings, which the segmentation does not read, and the
+  // segmentation's, which the deformation does not.
+  auto options_named = [cmd](std::initializer_list<const char*> names) {
+    std::vector<const CLI::Option*> options;
+    for (const char* name : names) options.push_back(cmd->get_option(name));
+    return options;
+  };
+  const std::vector<const CLI::Option*> deform_only = options_named(
+      {"--node-spacing", "--rigidity", "--coarse-stiffness", "--point-weight", "--rigid-groups",
+       "--deform-fused", "--deform-reacquire", "--deform-backward", "--deform-iterations",
+       "--deform-first-iterations"});
+  const std::vector<const CLI::Option*> segmentation_only = options_named(
+      {"--occlusion-frames", "--min-segment", "--seed-vertices", "--max-turn", "--min-solved",
+       "--max-segments", "--smoothing", "--patch-vertices", "--stiffness", "--graph-tracking",
+       "--node-vertices", "--node-rejoin", "--blend-nodes", "--track-robust", "--track-prior",
+       "--key-group-window"});
+  cmd->callback([args, exit_code, deform_only, segmentation_only] {
+    const bool deforming = args->options.tuning.deformation_tracking;
+    for (const CLI::Option* option : deforming ? segmentation_only : deform_only) {
+      if (option->count() == 0) continue;
+      std::fprintf(stderr, "meshvid: warning: %s has no effect %s\n",
+                   option->get_name().c_str(), deforming ? "with --deform 1" : "with --deform 0");
     }
     *exit_code = RunEncode(*args);
   });

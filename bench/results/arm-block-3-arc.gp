@@ -15,16 +15,16 @@ $s0 << EOD
 37.1104 36.5962
 EOD
 $s1 << EOD
-1.78791 36.5183
-3.13543 36.5116
+0.74403 36.4925
+1.99632 36.5045
 EOD
 $s2 << EOD
-1.78791 36.5210
-3.13543 36.5185
+0.74403 36.4931
+1.99632 36.5098
 EOD
 $s3 << EOD
-1.78791 36.5269
-3.13543 36.5242
+0.74403 36.4989
+1.99632 36.5208
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 68.9138 52.5383
 EOD
 $s1 << EOD
-2.06457 52.4132
-3.53251 52.4134
+0.746367 52.7790
+2.28689 52.4526
 EOD
 $s2 << EOD
-2.06457 52.4880
-3.53251 52.4892
+0.746367 52.8317
+2.28689 52.5139
 EOD
 $s3 << EOD
-2.06457 52.5337
-3.53251 52.5343
+0.746367 52.8877
+2.28689 52.5610
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

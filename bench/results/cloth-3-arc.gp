@@ -15,16 +15,16 @@ $s0 << EOD
 97.6672 62.4800
 EOD
 $s1 << EOD
-1.98485 62.4502
-3.19792 62.4724
+0.542827 61.9826
+1.46479 62.3321
 EOD
 $s2 << EOD
-1.98485 62.6579
-3.19792 62.6852
+0.542827 62.2309
+1.46479 62.5748
 EOD
 $s3 << EOD
-1.98485 62.7212
-3.19792 62.7354
+0.542827 62.4623
+1.46479 62.7413
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

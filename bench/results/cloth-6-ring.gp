@@ -15,16 +15,16 @@ $s0 << EOD
 64.0333 62.0679
 EOD
 $s1 << EOD
-1.95346 62.1902
-3.08885 62.2712
+0.656437 61.8206
+1.21889 62.2196
 EOD
 $s2 << EOD
-1.95346 62.4493
-3.08885 62.5494
+0.656437 62.0702
+1.21889 62.4765
 EOD
 $s3 << EOD
-1.95346 62.5422
-3.08885 62.6173
+0.656437 62.3278
+1.21889 62.6896
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

@@ -15,16 +15,16 @@ $s0 << EOD
 100.891 35.1902
 EOD
 $s1 << EOD
-2.29889 35.1803
-3.72056 35.1720
+1.61322 35.1728
+3.02539 35.1786
 EOD
 $s2 << EOD
-2.29889 35.1811
-3.72056 35.1755
+1.61322 35.1759
+3.02539 35.1845
 EOD
 $s3 << EOD
-2.29889 35.1853
-3.72056 35.1825
+1.61322 35.1861
+3.02539 35.1895
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

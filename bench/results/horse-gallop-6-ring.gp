@@ -15,16 +15,16 @@ $s0 << EOD
 143.024 55.0420
 EOD
 $s1 << EOD
-2.65571 55.0067
-4.67253 55.0166
+1.69958 54.7916
+3.86325 55.0236
 EOD
 $s2 << EOD
-2.65571 55.2024
-4.67253 55.2594
+1.69958 54.9174
+3.86325 55.1354
 EOD
 $s3 << EOD
-2.65571 55.2916
-4.67253 55.3429
+1.69958 55.0168
+3.86325 55.2113
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

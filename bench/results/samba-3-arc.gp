@@ -15,16 +15,16 @@ $s0 << EOD
 68.3818 38.7496
 EOD
 $s1 << EOD
-1.67012 38.7429
-2.86008 38.7373
+0.848157 38.5614
+2.03212 38.6350
 EOD
 $s2 << EOD
-1.67012 38.7492
-2.86008 38.7507
+0.848157 38.5640
+2.03212 38.6441
 EOD
 $s3 << EOD
-1.67012 38.7529
-2.86008 38.7538
+0.848157 38.5732
+2.03212 38.6516
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

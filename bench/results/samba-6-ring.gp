@@ -15,16 +15,16 @@ $s0 << EOD
 113.724 56.2880
 EOD
 $s1 << EOD
-1.99061 56.1101
-3.58007 56.1446
+0.897227 55.9087
+2.19698 56.0947
 EOD
 $s2 << EOD
-1.99061 56.2848
-3.58007 56.3535
+0.897227 56.0738
+2.19698 56.2445
 EOD
 $s3 << EOD
-1.99061 56.4002
-3.58007 56.4491
+0.897227 56.1957
+2.19698 56.3410
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

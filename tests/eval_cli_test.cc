@@ -96,6 +96,20 @@ TEST_F(EvalCliTest, RefFirstMeasuresAnExcerptAgainstTheWholeReference) {
   }
 }
 
+TEST_F(EvalCliTest, RefFirstZeroMeasuresTheReferencesFirstFrames) {
+  WritePlaneSequence(dir_, "ref", 4, 0.0f, 4);
+  WritePlaneSequence(dir_, "start", 2, 0.0f, 4);  // the reference's frames 0 and 1
+  const testing::CliRun run = testing::RunMeshvid(
+      "eval --ref '" + dir_.File("ref{frame:04}.obj") + "' --test '" +
+          dir_.File("start{frame:04}.obj") + "' --samples 2000 --quiet --ref-first 0 --json '" +
+          dir_.File("eval.json") + "'",
+      dir_);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(testing::ReadFile(dir_.File("eval.json")));
+  ASSERT_EQ(j["frames"].size(), 2u);
+  EXPECT_EQ(j["frames"][1]["d1_psnr"], "inf");
+}
+
 TEST_F(EvalCliTest, FrameCountMismatchFails) {
   WritePlaneSequence(dir_, "ref", 3, 0.0f, 4);
   WritePlaneSequence(dir_, "test", 2, 0.0f, 4);

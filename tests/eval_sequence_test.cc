@@ -216,6 +216,21 @@ TEST(EvalSequenceTest, RefFirstMeasuresTheTestFromALaterReferenceFrame) {
             StatusCode::kInvalidArgument);
 }
 
+TEST(EvalSequenceTest, RefFirstZeroMeasuresTheReferencesFirstFrames) {
+  // A test encoded from the reference's frames 0..1 (--frames 0:2): unset, the counts must
+  // match; given as 0, the reference may run on past the test.
+  VectorSequence ref = Planes(5, 0.0f);
+  VectorSequence test = Planes(2, 0.01f);
+  EXPECT_EQ(EvaluateSequences(ref, test, SmallOptions()).status().code(),
+            StatusCode::kInvalidArgument);
+  EvalOptions options = SmallOptions();
+  options.ref_first = 0;
+  const auto result = EvaluateSequences(ref, test, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  ASSERT_EQ(result->frames.size(), 2u);
+  for (const FrameMetrics& m : result->frames) EXPECT_NEAR(m.accuracy_rms, 0.01, 1e-6);
+}
+
 TEST(EvalSequenceTest, RangePeakOverrideAndCancel) {
   VectorSequence ref = Planes(4, 0.0f);
   VectorSequence test = Planes(4, 0.0f);

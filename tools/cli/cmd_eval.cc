@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "tools/cli/commands.h"
@@ -27,7 +28,7 @@ struct EvalArguments {
   double coverage_tolerance = -1;
   double peak = -1;
   std::uint64_t seed = 1;
-  int ref_first = 0;
+  std::optional<int> ref_first;  ///< unset: the reference and the test start together
   int level = -1;
   bool quiet = false;
 };
@@ -95,7 +96,8 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "The reference frame the test's frame 0 is measured against: N for a file\n"
                   "encoded with --frames N:... from a capture of the whole reference (test\n"
                   "frame t against reference frame N + t; the PSNR peak stays the whole\n"
-                  "reference's)")
+                  "reference's). Given, even as 0, the reference may run on past the test's\n"
+                  "last frame; not given, both must have as many frames")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")

@@ -83,7 +83,7 @@ PsnrMeanOfFrames MeanOfFramePsnrs(const std::vector<FrameMetrics>& frames) {
 StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
                                        const EvalOptions& options,
                                        const ProgressCallback& progress) {
-  const int ref_first = options.ref_first;
+  const int ref_first = options.ref_first.value_or(0);
   if (ref_first < 0) {
     return InvalidArgumentError("the reference's first frame " + std::to_string(ref_first) +
                                 " is negative");
@@ -92,13 +92,13 @@ StatusOr<EvalResult> EvaluateSequences(MeshSequence& ref, MeshSequence& test,
   const int ref_count = std::max(0, ref.frame_count() - ref_first);
   const int test_count = test.frame_count();
   const std::string ref_frames =
-      ref_first == 0 ? std::to_string(ref.frame_count()) + " frames"
+      !options.ref_first ? std::to_string(ref.frame_count()) + " frames"
                      : std::to_string(ref_count) + " frames from its frame " +
                            std::to_string(ref_first) + " on";
   int first = options.first_frame;
   int end = options.end_frame;
   if (end < 0) {
-    if (ref_first == 0 ? ref_count != test_count : ref_count < test_count) {
+    if (!options.ref_first ? ref_count != test_count : ref_count < test_count) {
       return InvalidArgumentError(
           "frame counts differ: the reference " + ref.description() + " has " + ref_frames +
           ", the test " + test.description() + " has " + std::to_string(test_count) +

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,7 +45,9 @@ struct EvalOptions {
   /// The reference frame the test's frame 0 is measured against (a file encoded with
   /// `meshvid encode --frames N:...` starts at the capture's frame N): test frame t against
   /// reference frame ref_first + t, sampled as a run over the whole reference samples it.
-  int ref_first = 0;
+  /// Given (even 0), the reference may run on past the test's last frame; unset, frame 0 and
+  /// both must have as many frames.
+  std::optional<int> ref_first;
   std::size_t samples = 200000;  ///< area-weighted samples per surface and frame
   std::uint64_t seed = 1;        ///< sampling seed (mixed with the frame number)
   /// Absolute coverage tolerance; < 0 selects kDefaultCoverageToleranceRatio * peak.

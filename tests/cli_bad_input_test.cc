@@ -182,6 +182,34 @@ TEST(BadInputCliTest, AnUnknownCommandIsNamed) {
   EXPECT_NE(empty.err.find("A subcommand is required"), std::string::npos) << empty.err;
 }
 
+TEST(BadInputCliTest, AWrongCommandLineIsOneLineAndExitsWithTheUsageCode) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  // A value out of range names the value and the bound, not a range to the largest double.
+  const testing::CliRun level = testing::RunMeshvid("decode x.mvid -o f.ply --level -1", dir);
+  EXPECT_EQ(level.exit_code, 2);
+  EXPECT_EQ(level.err, "meshvid: --level: -1 is below 0 (see meshvid decode --help)\n");
+  const testing::CliRun truncation =
+      testing::RunMeshvid("fuse a.ply -o b.ply --truncation 0", dir);
+  EXPECT_EQ(truncation.exit_code, 2);
+  EXPECT_NE(truncation.err.find("meshvid: --truncation: 0 is not above 0"), std::string::npos)
+      << truncation.err;
+  // An unknown option and a missing argument: the same style and code.
+  const testing::CliRun bogus = testing::RunMeshvid("decode x.mvid --bogus", dir);
+  EXPECT_EQ(bogus.exit_code, 2);
+  EXPECT_EQ(bogus.err.rfind("meshvid: ", 0), 0u) << bogus.err;
+  EXPECT_NE(bogus.err.find("--bogus"), std::string::npos) << bogus.err;
+  const testing::CliRun missing = testing::RunMeshvid("decode", dir);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.err.rfind("meshvid: ", 0), 0u) << missing.err;
+  // Help and version still exit 0, and the help says what the exit codes mean.
+  const testing::CliRun help = testing::RunMeshvid("--help", dir);
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("Exit status: 0 done; 1 the command failed"), std::string::npos)
+      << help.out;
+  EXPECT_EQ(testing::RunMeshvid("--version", dir).exit_code, 0);
+}
+
 TEST(InternalErrorTest, AnEscapingExceptionIsReportedWithExitCode3) {
   ::testing::internal::CaptureStderr();
   EXPECT_EQ(cli::RunCatchingInternalErrors([] { return 7; }), 7);

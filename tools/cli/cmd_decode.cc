@@ -14,6 +14,7 @@
 #include "format/container_reader.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
@@ -164,7 +165,7 @@ void AddDecodeCommand(CLI::App& app, int* exit_code) {
                   "(required unless --no-write)");
   cmd->add_option("--level", args->level,
                   "Resolution level 0 (base mesh) .. L (default: the finest stored)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary");
   cmd->add_flag("--no-write", args->no_write,

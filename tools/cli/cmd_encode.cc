@@ -14,6 +14,7 @@
 #include "codec/enc/encoder.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/capture_frame_source.h"
@@ -474,12 +475,12 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "With --deform, distance between the deformation's nodes along the surface "
                   "(0: 4% of the size)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--rigidity", o.tuning.deform_rigidity,
                   "With --deform, weight of neighbouring nodes agreeing on each other's "
                   "positions, per vertex a node carries")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   cmd->add_option("--coarse-stiffness", o.tuning.deform_coarse_stiffness,
                   "With --deform, on a key group's second frame (no velocity to predict its "
                   "motion from yet), the rigidity's multiplier at the coarsest correspondence "
@@ -492,13 +493,13 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "With --deform, weight of the point-to-point distance beside the "
                   "point-to-plane one")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--rigid-groups", o.tuning.deform_rigid_group_factor,
                   "With --deform, join neighbouring nodes that move as one rigid body through "
                   "a key group (one rigid transform poses each node's vertices within this "
                   "many tolerances, RMS, in every frame) and give them that transform (0: off)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--deform-fused", o.tuning.deform_track_fused,
                   "With --deform, track each frame to its views fused into a closed surface "
                   "instead of to the views themselves")

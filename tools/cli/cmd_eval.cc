@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/eval/eval_source.h"
@@ -89,7 +90,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
       ->required();
   cmd->add_option("--level", args->level,
                   "Level at which a .mvid test is decoded (default: the finest stored)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames,
                   "The test's frame range A:B (half-open), A:, :B or N");
   cmd->add_option("--ref-first", args->ref_first,
@@ -98,16 +99,16 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "frame t against reference frame N + t; the PSNR peak stays the whole\n"
                   "reference's). Given, even as 0, the reference may run on past the test's\n"
                   "last frame; not given, both must have as many frames")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")
       ->default_val(200000)
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   cmd->add_option("--coverage-tol", args->coverage_tolerance,
                   "Coverage tolerance in the data's units (default 0.25% of p)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--peak", args->peak, "Override the PSNR peak p (data units)")
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   cmd->add_option("--seed", args->seed, "Sampling seed")->default_val(1);
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar");
   cmd->callback([args, exit_code] { *exit_code = RunEval(*args); });

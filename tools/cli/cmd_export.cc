@@ -8,6 +8,7 @@
 
 #include "codec/dec/mvid_decoder.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/export/gltf_export.h"
 #include "tools/export/mesh_cache_export.h"
@@ -99,7 +100,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("-o,--out", args->output, "Output file: NAME.obj or NAME.glb")->required();
   cmd->add_option("--level", args->level,
                   "Resolution level of the OBJ + PC2 export, 0 (base) .. L (default: finest)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
   cmd->callback([args, exit_code] { *exit_code = RunExport(*args); });

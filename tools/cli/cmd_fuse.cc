@@ -15,6 +15,7 @@
 #include "codec/enc/surface_fusion.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/capture.h"
@@ -128,7 +129,7 @@ void AddFuseCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--json", args->json, "Also write per-frame figures as JSON to this file");
   cmd->add_option("--voxel", args->fusion.spacing,
                   "Voxel size in the capture's units (default: from the views' sample spacing)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--max-points", args->fusion.max_points,
                   "Most input points used; denser views are thinned on a grid first")
       ->default_val(args->fusion.max_points)
@@ -136,11 +137,11 @@ void AddFuseCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--truncation", args->fusion.truncation_voxels,
                   "Half-width of the band each point writes, in voxels")
       ->default_val(args->fusion.truncation_voxels)
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   cmd->add_option("--support", args->fusion.support_voxels,
                   "The surface ends this many voxels past the edge of the data")
       ->default_val(args->fusion.support_voxels)
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   cmd->add_option("--min-piece-share", args->fusion.min_piece_share,
                   "Drop connected pieces with fewer than this share of the triangles")
       ->default_val(args->fusion.min_piece_share)

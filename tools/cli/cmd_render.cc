@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
 #include "tools/render/render_job.h"
@@ -100,7 +101,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
                   "the first)");
   cmd->add_option("--level", args->level,
                   "Level of .mvid inputs, 0 (base) .. L (default: the finest stored)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(AtLeastZero());
   cmd->add_option("--camera", args->camera,
                   "AZ,EL[,ZOOM]: azimuth about +y and elevation in degrees, zoom > 1 closer\n"
                   "(default 25,12,1: from the front (+z), a little right and above)");
@@ -111,7 +112,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--error-max", args->error_max_mm,
                   "Top of the error colour scale in mm (default: a round number above 4 times\n"
                   "the first frame's median distance, in the worst panel)")
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   cmd->add_option("--crf", args->crf, "MP4 quality, x264/x265 CRF 0..51 (default 20)")
       ->check(CLI::Range(0, 51));
   cmd->add_flag("--no-labels", args->no_labels, "No panel names or frame number");

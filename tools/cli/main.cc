@@ -19,6 +19,10 @@ int Run(int argc, char** argv) {
       "Turns a multi-view capture (K range meshes per frame) into one compact .mvid file and\n"
       "back, and measures the result against ground truth."};
   app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 done; 1 the command failed (bad or missing data, an error reading or\n"
+      "writing); 2 the command line is wrong (an unknown command or option, a value out of\n"
+      "range); 3 an internal error (a bug: please report it).\n");
   app.set_version_flag("--version", "meshvid 0.1.0");
   int exit_code = 0;
   meshvid::cli::AddSimulateCommand(app, &exit_code);
@@ -46,7 +50,14 @@ int Run(int argc, char** argv) {
                    extras.front().c_str(), commands.c_str());
       return kExitUsage;
     }
-    return app.exit(e);
+    // --help and --version: CLI11 prints them and exits 0.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    // Any other bad command line: one line in the tool's own style, and the usage exit code.
+    const std::vector<CLI::App*> given = app.get_subcommands();
+    const std::string help =
+        "meshvid " + (given.empty() ? std::string() : given.front()->get_name() + " ") + "--help";
+    std::fprintf(stderr, "meshvid: %s (see %s)\n", e.what(), help.c_str());
+    return kExitUsage;
   }
   return exit_code;
 }

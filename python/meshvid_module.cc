@@ -283,7 +283,8 @@ PYBIND11_MODULE(meshvid, m) {
       }, py::arg("source"), "Opens a .mvid from a path or from bytes.");
 
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
-        py::arg("codec") = "hevc", py::arg("levels") = 2, py::arg("rebase_gain_db") = kDefaultRebaseGainDb,
+        py::arg("codec") = "hevc", py::arg("levels") = 2,
+        py::arg("rebase_gain_db") = kDefaultRebaseGainDb,
         py::arg("max_key_groups") = 0, py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32,
         py::arg("base_vertices") = 2000, py::arg("effort") = 4, py::arg("progress") = py::none(),
         "Encodes a capture: `frames` is a list of frames, each a list of views "

@@ -156,14 +156,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
         }
       }
       if (may_cut) {
-        const DataFit fit = meter.Measure(next, proxy);
-        if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-          RecordCut(ctx, key_fit, fit, &summary);
-          return true;
-        }
-        summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
-        summary.worst_loss_db =
-            std::max(summary.worst_loss_db, LossOfTrackedFrame(ctx, key_fit, fit));
+        if (!KeepTrackedFrame(ctx, key_fit, meter.Measure(next, proxy), &summary)) return true;
       }
       if (proxy.target) {
         ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);

@@ -159,8 +159,8 @@ struct EncoderTuning {
   bool deformation_tracking = true;
   /// Distance between the deformation's nodes along the base surface (0: 4% of the size,
   /// about 220 nodes on samba's 2,500-vertex base). Measured on samba 6-ring (60 frames,
-  /// key groups ended by the former share rule at 0.005): 2.6% made 20 key groups but 53/60 frames within 1.25x of the
-  /// baseline's accuracy, 4% 29 and 57/60, 5.2% 30 and 55/60.
+  /// key groups ended by the former share rule at 0.005): 2.6% made 20 key groups but 53/60
+  /// frames within 1.25x of the baseline's accuracy, 4% 29 and 57/60, 5.2% 30 and 55/60.
   double node_spacing = 0;
   /// Weight of neighbouring nodes agreeing on each other's positions, against the data
   /// (DeformationTrackingOptions::rigidity). Measured on samba 6-ring as above: 0.03 made 21

@@ -495,15 +495,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   DataFit key_fit;
   std::optional<FitMeter> meter;
   auto explained = [&](int t, const FrameProxy& frame) {
-    const DataFit fit = meter->Measure(tracks[t - start], frame);
-    if (!TrackedFrameExplained(ctx, key_fit, fit)) {
-      RecordCut(ctx, key_fit, fit, &summary);
-      return false;
-    }
-    summary.worst_unexplained = std::max(summary.worst_unexplained, fit.unexplained_share);
-        summary.worst_loss_db =
-            std::max(summary.worst_loss_db, LossOfTrackedFrame(ctx, key_fit, fit));
-    return true;
+    return KeepTrackedFrame(ctx, key_fit, meter->Measure(tracks[t - start], frame), &summary);
   };
   SegmentedMotion segmented;
   std::unique_ptr<GraphTracker> tracker;

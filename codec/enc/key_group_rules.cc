@@ -1,5 +1,6 @@
 #include "codec/enc/key_group_rules.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -9,21 +10,25 @@
 #include "codec/enc/surface_fusion.h"
 
 namespace meshvid {
+
 bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
   return StillExplains(key_fit, fit, ctx.lengths.detail_max_distance, RebaseGainDb(ctx.options),
                        ctx.lengths.farthest_growth);
 }
 
-double LossOfTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
-  return TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
-}
-
-void RecordCut(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-               KeyGroupSummary* summary) {
-  summary->cut_loss_db = LossOfTrackedFrame(ctx, key_fit, fit);
-  summary->cut_unexplained = fit.unexplained_share;
-  summary->cut_seen_through = fit.seen_through_share;
-  summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                      KeyGroupSummary* summary) {
+  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
+  if (!TrackedFrameExplained(ctx, key_fit, fit)) {
+    summary->cut_loss_db = loss_db;
+    summary->cut_unexplained = fit.unexplained_share;
+    summary->cut_seen_through = fit.seen_through_share;
+    summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;
+    return false;
+  }
+  summary->worst_unexplained = std::max(summary->worst_unexplained, fit.unexplained_share);
+  summary->worst_loss_db = std::max(summary->worst_loss_db, loss_db);
+  return true;
 }
 
 void ClearCut(KeyGroupSummary* summary) {

@@ -25,14 +25,11 @@ namespace meshvid {
 /// bytes are worth at the quality (StillExplains with RebaseGainDb and the farthest growth).
 bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit);
 
-/// The estimated D1 loss (dB) of a tracked frame's `fit` against a fresh base's, estimated by
-/// the key frame's `key_fit` (TrackingLossDb at the displacement range).
-double LossOfTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit);
-
-/// Records in `summary` what ended its key group: the figures of the tracked frame whose
-/// `fit` a fresh base was worth at, against the key frame's `key_fit`.
-void RecordCut(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-               KeyGroupSummary* summary);
+/// TrackedFrameExplained, with its figures recorded in `summary`: for a frame that stays,
+/// the key group's worst unexplained share and estimated loss (TrackingLossDb) so far; for
+/// one that does not, what ended the key group (the cut_* figures, against `key_fit`).
+bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                      KeyGroupSummary* summary);
 
 /// Clears them (-1): no frame has ended the key group.
 void ClearCut(KeyGroupSummary* summary);

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "tools/cli/commands.h"
-#include "tools/cli/option_checks.h"
 #include "tools/cli/json_text.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/eval/eval_source.h"
 #include "tools/eval/evaluation.h"

@@ -15,6 +15,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/encoder.h"
 #include "format/output_file.h"
+#include "meshvid/version.h"
 
 namespace py = pybind11;
 
@@ -80,15 +81,18 @@ TriangleMesh FromNumpy(const py::handle& vertices_object, const py::handle& tria
   return mesh;
 }
 
-/// An opened .mvid.
+/// An opened .mvid; closed by close() or at the end of a `with` block.
 class File {
  public:
-  explicit File(std::unique_ptr<MvidDecoder> decoder) : decoder_(std::move(decoder)) {}
+  File(std::unique_ptr<MvidDecoder> decoder, std::string name)
+      : decoder_(std::move(decoder)), name_(std::move(name)) {}
 
   py::dict Info() const {
-    const MvidInfo& info = decoder_->info();
+    const MvidInfo& info = decoder().info();
     py::dict d;
     d["frame_count"] = info.frame_count;
+    d["declared_frame_count"] = info.declared_frame_count;
+    d["partial"] = info.partial();
     d["frame_rate"] = info.frame_rate;
     d["levels"] = info.levels;
     d["codec"] = std::string(VideoCodecName(info.codec));
@@ -98,45 +102,74 @@ class File {
     d["vertices_per_level"] = info.vertices_per_level;
     d["triangles_per_level"] = info.triangles_per_level;
     d["key_groups"] = KeyGroups();
-    d["metadata"] = info.metadata_json;
+    d["metadata"] = Metadata();
     return d;
   }
+
+  /// The file's metadata JSON as a dict (empty if it has none).
+  py::object Metadata() const {
+    const std::string& text = decoder().info().metadata_json;
+    if (text.empty()) return py::dict();
+    return py::module_::import("json").attr("loads")(text);
+  }
+
+  std::string Repr() const {
+    if (!decoder_) return "<meshvid.File " + name_ + " (closed)>";
+    const MvidInfo& info = decoder_->info();
+    std::ostringstream text;
+    text << "<meshvid.File " << name_ << ": " << info.frame_count << " frame"
+         << (info.frame_count == 1 ? "" : "s");
+    if (info.partial()) text << " of " << info.declared_frame_count << " (partial)";
+    text << " at " << info.frame_rate << " fps, " << info.key_groups.size() << " key group"
+         << (info.key_groups.size() == 1 ? "" : "s") << ", levels 0.." << info.levels << ", "
+         << VideoCodecName(info.codec) << ">";
+    return text.str();
+  }
+
+  void Close() { decoder_.reset(); }
 
   /// [(first_frame, frame_count), ...]
   std::vector<std::pair<std::uint32_t, std::uint32_t>> KeyGroups() const {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
-    for (const MvidKeyGroupSpan& k : decoder_->info().key_groups) {
+    for (const MvidKeyGroupSpan& k : decoder().info().key_groups) {
       out.emplace_back(k.first_frame, k.frame_count);
     }
     return out;
   }
 
   std::uint32_t KeyGroupOf(std::int64_t frame) {
-    return Unwrap(decoder_->KeyGroupOf(CheckFrame(frame)));
+    return Unwrap(decoder().KeyGroupOf(CheckFrame(frame)));
   }
 
   py::tuple Frame(std::int64_t frame, int level) {
     const std::uint32_t t = CheckFrame(frame);
-    const int l = level < 0 ? decoder_->info().levels : level;
+    const int l = level < 0 ? decoder().info().levels : level;
     StatusOr<TriangleMesh> mesh = InvalidArgumentError("");
     {
       py::gil_scoped_release release;
-      mesh = decoder_->DecodeFrame(t, l);
+      mesh = decoder().DecodeFrame(t, l);
     }
     return ToNumpy(Unwrap(std::move(mesh)));
   }
 
-  std::uint32_t frame_count() const { return decoder_->info().frame_count; }
+  std::uint32_t frame_count() const { return decoder().info().frame_count; }
 
  private:
+  /// The decoder; a closed file raises ValueError, as Python's own files do.
+  MvidDecoder& decoder() const {
+    if (!decoder_) throw py::value_error("I/O operation on a closed meshvid.File (" + name_ + ")");
+    return *decoder_;
+  }
+
   std::uint32_t CheckFrame(std::int64_t frame) const {
-    if (frame < 0 || frame >= static_cast<std::int64_t>(decoder_->info().frame_count)) {
+    if (frame < 0 || frame >= static_cast<std::int64_t>(frame_count())) {
       throw py::index_error("frame " + std::to_string(frame) + " is not in 0.." +
                             std::to_string(static_cast<std::int64_t>(frame_count()) - 1));
     }
     return static_cast<std::uint32_t>(frame);
   }
   std::unique_ptr<MvidDecoder> decoder_;
+  std::string name_;  ///< 'path' or "<N bytes>", for repr and errors
 };
 
 /// Iterates over a File's frames (holding a reference on it).
@@ -240,26 +273,9 @@ py::bytes Encode(const py::sequence& frames, const std::string& path, int qualit
 PYBIND11_MODULE(meshvid, m) {
   using namespace meshvid;
   m.doc() = "meshvid: codec and file format for captured dynamic 3D surfaces (.mvid).";
+  m.attr("__version__") = MESHVID_VERSION_STRING;
   static py::exception<std::runtime_error> error(m, "Error");
   g_error = error.ptr();
-
-  py::class_<File>(m, "File", "An opened .mvid file (see meshvid.open).")
-      .def_property_readonly("info", &File::Info,
-                             "dict: frame_count, frame_rate, levels, codec, key_groups, "
-                             "vertices_per_level, triangles_per_level, ...")
-      .def_property_readonly("key_groups", &File::KeyGroups,
-                             "[(first_frame, frame_count)]: runs of frames with one "
-                             "connectivity")
-      .def("key_group_of", &File::KeyGroupOf, py::arg("t"), "The key group holding frame t.")
-      .def("frame", &File::Frame, py::arg("t"), py::arg("level") = -1,
-           "(vertices float32 (N, 3), triangles int32 (T, 3)) of frame t at `level` "
-           "(-1: the finest stored). Frames of one key group share the triangles.")
-      .def("frames", [](py::object self, int level) { return FrameIterator{self, level}; },
-           py::arg("level") = -1,
-           "An iterator over every frame at `level`, decoding one frame per step.")
-      .def("__len__", &File::frame_count)
-      .def("__iter__", [](py::object self) { return FrameIterator{self, -1}; },
-           "Iterates over the frames at the finest level, decoding one per step.");
 
   py::class_<FrameIterator>(m, "FrameIterator", "Frames of a File, decoded one at a time.")
       .def("__iter__", [](FrameIterator& it) -> FrameIterator& { return it; })
@@ -269,18 +285,78 @@ PYBIND11_MODULE(meshvid, m) {
         return file.Frame(it.next++, it.level);
       });
 
-  m.def("open", [](py::object source) {
+  py::class_<File>(m, "File", "An opened .mvid file (see meshvid.open).")
+      .def_property_readonly("info", &File::Info,
+                             "dict: frame_count, declared_frame_count (the header's), partial, "
+                             "frame_rate, levels, codec, key_groups, vertices_per_level and "
+                             "triangles_per_level (of key group 0), metadata, ...")
+      .def_property_readonly("metadata", &File::Metadata,
+                             "dict: what the encoder recorded (encoder, capture, ...)")
+      .def_property_readonly(
+          "partial", [](const File& f) { return f.Info()["partial"]; },
+          "True if the file is cut or damaged: fewer frames are readable "
+          "than its header promises (opened with allow_partial=True)")
+      .def_property_readonly("key_groups", &File::KeyGroups,
+                             "[(first_frame, frame_count)]: runs of frames with one "
+                             "connectivity")
+      .def("key_group_of", &File::KeyGroupOf, py::arg("t"), "The key group holding frame t.")
+      .def("frame", &File::Frame, py::arg("t"), py::arg("level") = -1,
+           "(vertices float32 (N, 3), triangles int32 (T, 3)) of frame t at `level` "
+           "(-1: the finest stored). Frames of one key group share the triangles.")
+      .def(
+          "frames",
+          [](py::object self, int level) {
+            return FrameIterator{self, level};
+          },
+          py::arg("level") = -1,
+          "An iterator over every frame at `level`, decoding one frame per step.")
+      .def("__len__", &File::frame_count)
+      .def("__repr__", &File::Repr)
+      .def("close", &File::Close, "Releases the file; later calls raise ValueError.")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__",
+           [](File& f, const py::object&, const py::object&, const py::object&) {
+             f.Close();
+             return false;
+           })
+      .def(
+          "__iter__",
+          [](py::object self) {
+            return FrameIterator{self, -1};
+          },
+          "Iterates over the frames at the finest level, decoding one per step.");
+
+  m.def(
+      "open",
+      [](py::object source, bool allow_partial) {
+        MvidDecoderOptions options;
+        options.allow_partial = allow_partial;
         std::unique_ptr<MvidDecoder> decoder;
+        std::string name;
         if (py::isinstance<py::bytes>(source) || py::isinstance<py::bytearray>(source) ||
             py::isinstance<py::memoryview>(source)) {
           const std::string bytes = py::bytes(source);
-          decoder = Unwrap(MvidDecoder::OpenMemory(std::vector<std::uint8_t>(bytes.begin(), bytes.end())));
+          decoder = Unwrap(MvidDecoder::OpenMemory(
+              std::vector<std::uint8_t>(bytes.begin(), bytes.end()), options));
+          name = "<" + std::to_string(bytes.size()) + " bytes>";
         } else {
           const std::string path = py::str(py::module_::import("os").attr("fspath")(source));
-          decoder = Unwrap(MvidDecoder::OpenFile(path));
+          decoder = Unwrap(MvidDecoder::OpenFile(path, options));
+          name = py::repr(py::str(path));
         }
-        return File(std::move(decoder));
-      }, py::arg("source"), "Opens a .mvid from a path or from bytes.");
+        if (decoder->info().partial()) {
+          const std::string warning = name + ": partial file: only " +
+                                      std::to_string(decoder->info().frame_count) + " of the " +
+                                      std::to_string(decoder->info().declared_frame_count) +
+                                      " frames its header promises are readable";
+          PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1);
+        }
+        return File(std::move(decoder), name);
+      },
+      py::arg("source"), py::arg("allow_partial") = false,
+      "Opens a .mvid from a path or from bytes; usable in a `with` block. A cut or damaged "
+      "file (fewer frames readable than its header promises) raises meshvid.Error, unless "
+      "allow_partial=True: then it opens with a UserWarning and File.partial is True.");
 
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
         py::arg("codec") = "hevc", py::arg("levels") = 2,

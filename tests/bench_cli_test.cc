@@ -143,7 +143,7 @@ TEST(BenchCliTest, BaselineCodesEveryFrameAtEverySetting) {
                               "\" --bits 8,12 --summary-json \"" + dir.File("s.json") + "\"",
                           dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("Baseline on 2 frames"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("Baseline on 2 frames"), std::string::npos) << run.err;
   auto summary = ParseBaselineSummary(testing::ReadFile(dir.File("s.json")), "s.json");
   ASSERT_TRUE(summary.ok()) << summary.status().ToString();
   EXPECT_EQ(summary->frames, 2);

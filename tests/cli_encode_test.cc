@@ -268,8 +268,8 @@ TEST_F(ArmBlockEncode, DeformedTheBlockAndTheArmEachMoveAsOneRigidGroup) {
       *dir_);
   ASSERT_EQ(enc.exit_code, 0) << enc.err;
   EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;  // --rigid-groups is read
-  // The summary speaks of the deformation's nodes and groups, not of segments.
-  EXPECT_NE(enc.err.find("deformation nodes moving as"), std::string::npos) << enc.err;
+  // The summary speaks of the deformation's nodes and groups, not of rigid pieces.
+  EXPECT_NE(enc.err.find("(deformation nodes) moving as"), std::string::npos) << enc.err;
   EXPECT_EQ(enc.err.find("rigid pieces"), std::string::npos) << enc.err;
   const nlohmann::json summary =
       nlohmann::json::parse(testing::ReadFile(dir_->File("deform.json")));

@@ -24,7 +24,7 @@ TEST(FuseCliTest, FusesEveryFrameAndReportsFigures) {
                                 dir.File("out/fuse.json") + "' -q",
                             dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("0 failed"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("0 failed"), std::string::npos) << run.err;
   const nlohmann::json summary = nlohmann::json::parse(testing::ReadFile(dir.File("out/fuse.json")));
   EXPECT_EQ(summary["failures"], 0);
   ASSERT_EQ(summary["frames"].size(), 2u);

@@ -289,8 +289,18 @@ TEST(CodecBadInputTest, HeaderFrameCountIsCheckedAgainstTheGroups) {
   // HEAD claims 2^31 frames; the index and the groups hold 6. The index is not trusted, the
   // scan finds the 6 frames and the decoder reports both counts; validation fails.
   const std::vector<uint8_t> file = testing::WithHeaderFrameCount(GoldenBytes(), 0x80000000u);
-  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenMemory(file);
+  // Partial files are refused unless allowed.
+  const StatusOr<std::unique_ptr<MvidDecoder>> refused = MvidDecoder::OpenMemory(file);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kCorrupt);
+  EXPECT_NE(refused.status().message().find(
+                "partial file: only 6 of the 2147483648 frames its header promises are readable"),
+            std::string::npos)
+      << refused.status().ToString();
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder =
+      MvidDecoder::OpenMemory(file, {.allow_partial = true});
   ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  EXPECT_TRUE((*decoder)->info().partial());
   EXPECT_EQ((*decoder)->info().frame_count, 6u);
   EXPECT_EQ((*decoder)->info().declared_frame_count, 0x80000000u);
   EXPECT_FALSE((*decoder)->info().indexed);

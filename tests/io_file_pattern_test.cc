@@ -119,6 +119,16 @@ TEST(FrameRangeTest, ParsesEveryForm) {
   EXPECT_EQ(*ParseFrameRange("0:100", 10), Range(0, 10));  // clamped
 }
 
+TEST(FrameRangeTest, SaysWhenAnExplicitEndIsClipped) {
+  std::string clipped = "stale";
+  EXPECT_EQ(*ParseFrameRange("8:20", 10, &clipped), std::make_pair(8, 10));
+  EXPECT_EQ(clipped, "frame range '8:20' runs past the last of the 10 frames: using 8:10");
+  for (const char* within : {"8:10", "8:", ":", "9"}) {
+    ASSERT_TRUE(ParseFrameRange(within, 10, &clipped).ok()) << within;
+    EXPECT_EQ(clipped, "") << within;
+  }
+}
+
 TEST(FrameRangeTest, RejectsEmptyAndMalformedRanges) {
   for (const char* bad : {"5:5", "9:3", "12", "10:", "a:b", "-1:3", "", "1:2:3", "3 ", "x"}) {
     const auto range = ParseFrameRange(bad, 10);

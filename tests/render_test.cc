@@ -155,7 +155,15 @@ TEST(RenderJobTest, PanelsSideBySideAndBadRanges) {
   EXPECT_EQ(stats->width, 192);
   EXPECT_GT(stats->error_max_mm, 0);
   EXPECT_FALSE(testing::ReadFile(dir.File("f03.png")).empty());
+  // Frames past the end are clipped, and said so; a range starting past it fails.
+  options.first_frame = 3;
   options.end_frame = 100000;
+  stats = RunRenderJob(options);
+  ASSERT_TRUE(stats.ok()) << stats.status().message();
+  EXPECT_EQ(stats->clipped_frames.find("frames 3:100000 run past the "), 0u)
+      << stats->clipped_frames;
+  EXPECT_LT(stats->frames, 100000 - 3);
+  options.first_frame = 100000;
   EXPECT_FALSE(RunRenderJob(options).ok());
   options.output = dir.File("x.gif");
   EXPECT_FALSE(RunRenderJob(options).ok());

@@ -195,8 +195,24 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenIndexed(
     }
     info.key_groups.push_back(span);
   }
+  if (info.partial() && info.frame_count > 0 && !options.allow_partial) {
+    return CorruptError(decoder->name_ + ": partial file: only " +
+                        std::to_string(info.frame_count) + " of the " +
+                        std::to_string(info.declared_frame_count) +
+                        " frames its header promises are readable (the file is cut or "
+                        "damaged; open it with allow_partial, --allow-partial in meshvid, to "
+                        "read those)");
+  }
   decoder->groups_ = std::make_unique<IndexedGroups>(std::move(reader));
   MESHVID_RETURN_IF_ERROR(decoder->LoadKeyGroup(0));
+  if (info.frame_count == 0) {
+    const std::string promise =
+        info.declared_frame_count > 0
+            ? "the header promises " + std::to_string(info.declared_frame_count) + " frames; "
+            : "";
+    return CorruptError(decoder->name_ + ": no frame is readable (" + promise +
+                        "the file is cut or damaged in its first group of frames)");
+  }
   return decoder;
 }
 

@@ -70,6 +70,10 @@ struct MvidInfo {
   /// Vertices and triangles of a decoded frame at each level 0..levels.
   std::vector<std::size_t> vertices_per_level;
   std::vector<std::size_t> triangles_per_level;
+
+  /// True when fewer frames are readable than the header promises (a cut or damaged file,
+  /// opened with MvidDecoderOptions::allow_partial).
+  bool partial() const { return declared_frame_count > frame_count; }
 };
 
 /// Bytes of the per-group streams, summed over the readable groups.
@@ -85,6 +89,10 @@ struct MvidStreamSizes {
 /// Decoder settings.
 struct MvidDecoderOptions {
   int threads = 1;  ///< video decoder threads (0: automatic)
+  /// Open a file whose header promises more frames than it holds (cut or damaged), giving
+  /// the frames that are readable; by default such a file is refused (corrupt). Streams are
+  /// read as they come and are not checked.
+  bool allow_partial = false;
 };
 
 /// Decodes frames of a .mvid. Frames may be asked for in any order; asking in order is

@@ -157,6 +157,8 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
       }
       if (may_cut) {
         if (!KeepTrackedFrame(ctx, key_fit, meter.Measure(next, proxy), &summary)) return true;
+      } else {
+        RecordHeldFrame(ctx, key_fit, meter.Measure(next, proxy), t, &summary);
       }
       if (proxy.target) {
         ObserveVertices(ctx, base, analysis->motion, *proxy.target, next, &observed);

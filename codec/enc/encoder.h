@@ -302,6 +302,15 @@ double RebaseGainDb(const EncoderOptions& options);
 /// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).
 int QualityToQp(VideoCodec codec, int quality);
 
+/// A frame a key group kept although its tracked base no longer explained it (a fresh base
+/// would have been due), because max_key_groups allowed no new key group.
+struct HeldFrame {
+  int frame = 0;                  ///< the capture's frame number
+  double loss_db = 0;             ///< estimated D1 a fresh base would have gained (dB)
+  double unexplained_share = 0;   ///< share of its points beyond the displacements' reach
+  double seen_through_share = 0;  ///< share of the tracked surface a camera saw through
+};
+
 /// One key group of an encode.
 struct KeyGroupSummary {
   int first_frame = 0;          ///< the capture's frame number of its first frame
@@ -339,6 +348,10 @@ struct KeyGroupSummary {
   /// point than at the key frame (DataFit::farthest_from_data; data units; the rule of
   /// EncoderTuning::farthest_growth), or -1 as above.
   double cut_farthest_growth = -1;
+  /// Frames kept that the tracked base does not explain, in frame order: only in the last
+  /// key group max_key_groups allows (embedded deformation tracking), where the data needs
+  /// more key groups than the limit gives.
+  std::vector<HeldFrame> held_frames;
 };
 
 /// What an encode produced, for the summary a tool prints.

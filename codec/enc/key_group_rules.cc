@@ -31,6 +31,16 @@ bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const Da
   return true;
 }
 
+void RecordHeldFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                     int frame, KeyGroupSummary* summary) {
+  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
+  summary->worst_unexplained = std::max(summary->worst_unexplained, fit.unexplained_share);
+  summary->worst_loss_db = std::max(summary->worst_loss_db, loss_db);
+  if (!TrackedFrameExplained(ctx, key_fit, fit)) {
+    summary->held_frames.push_back({frame, loss_db, fit.unexplained_share, fit.seen_through_share});
+  }
+}
+
 void ClearCut(KeyGroupSummary* summary) {
   summary->cut_unexplained = summary->cut_seen_through = summary->cut_farthest_growth =
       summary->cut_loss_db = -1;

@@ -31,6 +31,12 @@ bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, con
 bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
                       KeyGroupSummary* summary);
 
+/// For a key group that may not be cut (max_key_groups): records frame `frame` in
+/// summary->held_frames where KeepTrackedFrame would have ended the key group, and the key
+/// group's worst figures either way.
+void RecordHeldFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                     int frame, KeyGroupSummary* summary);
+
 /// Clears them (-1): no frame has ended the key group.
 void ClearCut(KeyGroupSummary* summary);
 

@@ -1,5 +1,9 @@
 """Tests of the meshvid Python module (run by ctest as python.pytest)."""
 import os
+import pydoc
+import re
+import struct
+import warnings
 
 import numpy as np
 import pytest
@@ -65,6 +69,65 @@ def test_errors_carry_the_library_message(tmp_path):
         meshvid.encode([[(np.zeros((3, 3)), np.array([[0, 1, 5]]))]])
 
 
+def test_version_context_manager_repr_and_metadata():
+    assert re.fullmatch(r"\d+\.\d+\.\d+", meshvid.__version__)
+    with meshvid.open(V2) as f:
+        assert len(f) == 12
+        text = repr(f)
+        assert "sphere.v2.mvid" in text and "12 frames" in text and "3 key groups" in text
+        assert isinstance(f.metadata, dict) and isinstance(f.info["metadata"], dict)
+        assert f.partial is False
+    assert "closed" in repr(f)
+    with pytest.raises(ValueError, match="closed"):
+        f.frame(0)
+    with pytest.raises(ValueError, match="closed"):
+        len(f)
+
+
+def test_docstrings_name_no_cpp_types():
+    text = pydoc.render_doc(meshvid, renderer=pydoc.plaintext)
+    assert "meshvid::" not in text and "std::" not in text and "anonymous" not in text
+
+
+def crc32c(data):
+    """CRC-32C (Castagnoli), the container's chunk checksum."""
+    crc = 0xFFFFFFFF
+    for byte in data:
+        crc ^= byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ (0x82F63B78 if crc & 1 else 0)
+    return crc ^ 0xFFFFFFFF
+
+
+def promising(data, frames):
+    """`data` with its HEAD chunk promising `frames` frames, its CRC recomputed. HEAD follows the
+    8-byte preamble: a 16-byte chunk header (payload size at +8), then the payload, whose
+    frame_count follows the frame rate's numerator and denominator; the CRC after the payload
+    covers the chunk header and payload (spec/mvid-container.md)."""
+    head, header = 8, 16
+    size = struct.unpack_from("<Q", data, head + 8)[0]
+    out = bytearray(data)
+    struct.pack_into("<I", out, head + header + 8, frames)
+    end = head + header + size
+    struct.pack_into("<I", out, end, crc32c(bytes(out[head:end])))
+    return bytes(out)
+
+
+def test_a_partial_file_is_refused_unless_allowed():
+    with open(V2, "rb") as stream:
+        whole = stream.read()
+    cut = promising(whole, 12)[:10750]
+    with pytest.raises(meshvid.Error, match="partial file: only 8 of the 12 frames"):
+        meshvid.open(cut)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        f = meshvid.open(cut, allow_partial=True)
+    assert any("partial file" in str(w.message) for w in caught)
+    assert f.partial is True and len(f) == 8
+    assert f.info["declared_frame_count"] == 12
+    assert "(partial)" in repr(f)
+
+
 def sphere(radius, rings=24, segments=48):
     """A closed UV sphere: (vertices (V, 3), triangles (F, 3))."""
     theta = np.linspace(0, np.pi, rings + 1)[1:-1]
@@ -98,7 +161,8 @@ def test_encode_from_arrays_round_trips(tmp_path):
         moved = vertices + np.array([0.03 * t, 0, 0], dtype=np.float32)
         # Two views, each the half of the surface facing it.
         frames.append([(moved, triangles[centres > -0.02]), (moved, triangles[centres < 0.02])])
-    path = tmp_path / "blob.mvid"
+    # A folder that does not exist is created, as `meshvid encode -o` does.
+    path = tmp_path / "new" / "folder" / "blob.mvid"
     stages = set()
     data = meshvid.encode(frames, path=str(path), quality=60, levels=1,
                           progress=lambda stage, done, total: stages.add(stage))

@@ -523,7 +523,7 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
     if (!encode.ok) encode.error = "encode: " + ChildFailure(run);
     if (encode.ok) {
       // The file's own description: levels, frames and size on disk.
-      const StatusOr<ChildRun> info = Child({"info", file, "--json"}, stem + ".info");
+      const StatusOr<ChildRun> info = Child({"info", file, "--json", "-"}, stem + ".info");
       StatusOr<json> j = info.ok() && info->ok()
                              ? ReadJsonFile(info->log_path)
                              : StatusOr<json>(InternalError(ChildFailure(info)));

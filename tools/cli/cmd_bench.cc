@@ -242,18 +242,18 @@ int RunBaselineCommand(const BaselineArguments& args) {
   bar.Finish();
   if (!summary.ok()) return ReportError(summary.status());
   if (!args.summary_json.empty()) {
-    const Status written = WriteFileAtomically(args.summary_json, BaselineSummaryToJson(*summary));
+    const Status written = WriteJsonOutput(args.summary_json, BaselineSummaryToJson(*summary));
     if (!written.ok()) return ReportError(written);
   }
   if (!args.quiet) {
-    std::printf("Baseline on %d frames: reading %.2f s, fusion %.2f s\n", summary->frames,
-                summary->load_seconds, summary->fuse_seconds);
+    std::fprintf(stderr, "Baseline on %d frames: reading %.2f s, fusion %.2f s\n", summary->frames,
+                 summary->load_seconds, summary->fuse_seconds);
     for (const BaselineSetting& s : summary->settings) {
-      std::printf(
-          "  %2d bits: %.0f bytes/frame, Draco encode %.3f s, decode %.3f s, %.0f "
-          "vertices/frame -> %s\n",
-          s.position_bits, summary->frames ? double(s.bytes_total) / summary->frames : 0.0,
-          s.encode_seconds, s.decode_seconds, s.vertices, s.pattern.c_str());
+      std::fprintf(stderr,
+                   "  %2d bits: %.0f bytes/frame, Draco encode %.3f s, decode %.3f s, %.0f "
+                   "vertices/frame -> %s\n",
+                   s.position_bits, summary->frames ? double(s.bytes_total) / summary->frames : 0.0,
+                   s.encode_seconds, s.decode_seconds, s.vertices, s.pattern.c_str());
     }
   }
   return 0;
@@ -275,8 +275,9 @@ int RunDracoDecodeCommand(const std::string& folder, const std::string& json, bo
     if (!written.ok()) return ReportError(written);
   }
   if (!quiet) {
-    std::printf("Decoded %d Draco frames of %s in %.3f s: %.1f frames/s, %.0f vertices/frame\n",
-                summary->frames, folder.c_str(), summary->seconds, fps, summary->vertices);
+    std::fprintf(stderr,
+                 "Decoded %d Draco frames of %s in %.3f s: %.1f frames/s, %.0f vertices/frame\n",
+                 summary->frames, folder.c_str(), summary->seconds, fps, summary->vertices);
   }
   return 0;
 }
@@ -358,7 +359,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   base->add_option("--draco-speed", baseline->draco_speed, "Draco speed 0 (smallest) .. 10")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
-  base->add_option("--summary-json", baseline->summary_json, "Write the measurements as JSON");
+  base->add_option("--json,--summary-json", baseline->summary_json,
+                   JsonOptionHelp("Write the measurements"));
   base->add_flag("-q,--quiet", baseline->quiet, "No progress bar and no summary");
   base->callback([baseline, exit_code] { *exit_code = RunBaselineCommand(*baseline); });
 

@@ -144,6 +144,13 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["hit_share"] = s.hit_share;
   j["key_groups"] = nlohmann::json::array();
   for (const KeyGroupSummary& k : s.key_groups) {
+    nlohmann::json held = nlohmann::json::array();
+    for (const HeldFrame& h : k.held_frames) {
+      held.push_back({{"frame", h.frame},
+                      {"loss_db", h.loss_db},
+                      {"unexplained", h.unexplained_share},
+                      {"seen_through", h.seen_through_share}});
+    }
     j["key_groups"].push_back({{"first_frame", k.first_frame},
                                {"key_frame", k.key_frame},
                                {"frames", k.frames},
@@ -161,7 +168,8 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"cut_loss_db", k.cut_loss_db},
                                {"cut_unexplained", k.cut_unexplained},
                                {"cut_seen_through", k.cut_seen_through},
-                               {"cut_farthest_growth", k.cut_farthest_growth}});
+                               {"cut_farthest_growth", k.cut_farthest_growth},
+                               {"held_frames", held}});
   }
   j["scale"] = s.scale;
   j["tolerance"] = s.tolerance;
@@ -182,29 +190,56 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   return j;
 }
 
-/// The summary's line on the motion: the segmentation's pieces, or with --deform the
-/// deformation's nodes and the rigid groups they were joined into (means over key groups).
+/// The summary's line on the motion, counting segments as `meshvid info` does (key group 0's,
+/// as stored in the file): the deformation's nodes and the rigid groups they were joined
+/// into, or the segmentation's rigid pieces and the patches over the rest; then the means
+/// over the key groups.
 std::string MotionLine(const EncodeSummary& s, const EncoderOptions& options) {
-  char line[256];
+  const KeyGroupSummary first = s.key_groups.empty() ? KeyGroupSummary() : s.key_groups.front();
+  char line[320];
   if (options.tuning.deformation_tracking) {
     std::snprintf(line, sizeof(line),
-                  "  motion        %d deformation nodes moving as %d rigid groups (means over "
-                  "key groups); %.1f%% of base triangles seen\n",
-                  s.segments, s.rigid_groups, 100 * s.surface_share);
+                  "  motion        %s (deformation nodes) moving as %s in key group 0; "
+                  "means over key groups %d and %d; %.1f%% of base triangles seen\n",
+                  Count(first.segments, "segment").c_str(),
+                  Count(first.rigid_groups, "rigid group").c_str(), s.segments, s.rigid_groups,
+                  100 * s.surface_share);
   } else {
     std::snprintf(line, sizeof(line),
-                  "  segments      %d rigid pieces, %.1f%% of base vertices registered; %d "
-                  "patches over the rest; %.1f%% of base triangles seen\n",
-                  s.segments, 100 * s.registered_share, s.patches, 100 * s.surface_share);
+                  "  motion        %s in key group 0 (%s + %s over the rest); means over key "
+                  "groups %d + %d; %.1f%% of base vertices registered, %.1f%% of base "
+                  "triangles seen\n",
+                  Count(first.segments + first.patches, "segment").c_str(),
+                  Count(first.segments, "rigid piece").c_str(),
+                  Count(first.patches, "patch", "patches").c_str(), s.segments, s.patches,
+                  100 * s.registered_share, 100 * s.surface_share);
   }
   return line;
+}
+
+/// Says which frames a key group kept although its base did not explain them (held by
+/// --max-key-groups), and by how much: the encode is quietly worse there otherwise.
+void PrintHeldFrames(const EncodeSummary& s, const EncoderOptions& options) {
+  for (std::size_t k = 0; k < s.key_groups.size(); ++k) {
+    const std::vector<HeldFrame>& held = s.key_groups[k].held_frames;
+    if (held.empty()) continue;
+    const HeldFrame worst = *std::max_element(
+        held.begin(), held.end(),
+        [](const HeldFrame& a, const HeldFrame& b) { return a.loss_db < b.loss_db; });
+    std::fprintf(stderr,
+                 "  warning       --max-key-groups %d: key group %zu keeps %s its base does not "
+                 "explain (from frame %d; a fresh base would gain up to %.1f dB, at frame %d, "
+                 "where %.1f%% of the points are out of reach); allow more key groups there\n",
+                 options.max_key_groups, k, Count(held.size(), "frame").c_str(), held.front().frame,
+                 worst.loss_db, worst.frame, 100 * worst.unexplained_share);
+  }
 }
 
 void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double seconds) {
   const double frames = std::max(1, s.frames);
   const MvidWriteStats& b = s.stats;
   std::fprintf(stderr,
-               "Encoded %d frames x %d views of %s into %s in %.1f s (%.2f frames/s)\n"
+               "Encoded %s x %s of %s into %s in %.1f s (%.2f frames/s)\n"
                "  key groups    %zu (mean %.1f frames; a fresh base where it gains more D1 than "
                "its bytes are worth)\n"
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
@@ -212,15 +247,16 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
                "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
                "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
-               s.frames, s.views, args.capture.c_str(), args.output.c_str(), seconds,
-               frames / seconds, s.key_groups.size(),
-               frames / double(std::max<std::size_t>(1, s.key_groups.size())), s.base_vertices,
-               s.samples_per_frame, args.options.levels, MotionLine(s, args.options).c_str(),
-               100 * s.hit_share, 100 * s.filled_share,
+               Count(s.frames, "frame").c_str(), Count(s.views, "view").c_str(),
+               args.capture.c_str(), args.output.c_str(), seconds, frames / seconds,
+               s.key_groups.size(), frames / double(std::max<std::size_t>(1, s.key_groups.size())),
+               s.base_vertices, s.samples_per_frame, args.options.levels,
+               MotionLine(s, args.options).c_str(), 100 * s.hit_share, 100 * s.filled_share,
                Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
                Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),
                Kilobytes(b.total_bytes).c_str(), Kilobytes(b.total_bytes / frames).c_str(),
                MbitPerSecond(s), s.frame_rate);
+  PrintHeldFrames(s, args.options);
   if (s.free_space_views > 0) {
     std::fprintf(stderr,
                  "  free space    %d of %d views calibrated: bases end, and key groups end, "
@@ -240,11 +276,16 @@ int RunEncode(EncodeArguments args) {
       CaptureFrameSource::Open(args.capture);
   if (!source.ok()) return ReportError(source.status());
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*source)->frame_count());
-    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    StatusOr<std::pair<int, int>> range = FramesOption(args.frames, (*source)->frame_count());
+    if (!range.ok()) return ReportError(range.status());
     args.options.first_frame = range->first;
     args.options.end_frame = range->second;
   }
+  // Only the frames encoded need their files (a capture may be encoded in pieces).
+  const Status files = (*source)->capture().CheckViewFiles(
+      args.options.first_frame,
+      args.options.end_frame < 0 ? (*source)->frame_count() : args.options.end_frame);
+  if (!files.ok()) return ReportError(files);
   if (!args.base_mesh.empty()) {
     StatusOr<TriangleMesh> base = ReadMesh(args.base_mesh);
     if (!base.ok()) return ReportError(base.status().WithContext("--base-mesh"));
@@ -271,7 +312,7 @@ int RunEncode(EncodeArguments args) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) PrintSummary(*summary, args, seconds);
   if (!args.summary_json.empty()) {
-    const Status written = WriteFileAtomically(
+    const Status written = WriteJsonOutput(
         args.summary_json, DumpJson(SummaryJson(*summary, args, seconds), 2) + "\n");
     if (!written.ok()) return ReportError(written.WithContext("--summary-json"));
   }
@@ -285,9 +326,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   EncoderOptions& o = args->options;
   CLI::App* cmd = app.add_subcommand(
       "encode",
-      "Encode a multi-view capture into a .mvid: per key group a base mesh (fused from its "
-      "first frame or given), its motion (an embedded deformation tracked frame by frame, or "
-      "with --deform 0 a multi-frame piecewise-rigid segmentation), and the fused surface "
+      "Encode a multi-view capture into a .mvid: per key group a base mesh (fused from its\n"
+      "first frame or given), its motion (an embedded deformation tracked frame by frame, or\n"
+      "with --deform 0 a multi-frame piecewise-rigid segmentation), and the fused surface\n"
       "detail as a displacement video. Lengths default to fractions of frame 0's size.");
   cmd->add_option("CAPTURE", args->capture,
                   "The capture: a manifest.json, a file pattern with {frame} and {view} "
@@ -550,8 +591,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--hide-unseen", o.hide_unseen,
                 "Leave out of the decoded surface the base triangles no view saw in any frame "
                 "(default: decode the whole base surface, unseen parts moved and filled)");
-  cmd->add_option("--summary-json", args->summary_json,
-                  "Also write the summary (bytes per stream, rate, timings) as JSON");
+  cmd->add_option("--json,--summary-json", args->summary_json,
+                  JsonOptionHelp("Also write the summary (bytes per stream, rate, timings, "
+                                 "key groups)"));
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   // The embedded deformation's settings, which the segmentation does not read, and the
   // segmentation's, which the deformation does not.

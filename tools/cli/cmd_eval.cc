@@ -9,6 +9,7 @@
 
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"
+#include "tools/cli/mvid_input.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/eval/eval_source.h"
@@ -32,13 +33,16 @@ struct EvalArguments {
   std::optional<int> ref_first;  ///< unset: the reference and the test start together
   int level = -1;
   bool quiet = false;
+  bool allow_partial = false;
 };
 
 int RunEval(const EvalArguments& args) {
   StatusOr<std::unique_ptr<MeshSequence>> ref = OpenGroundTruth(args.ref);
   if (!ref.ok()) return ReportError(ref.status().WithContext("--ref " + args.ref));
-  StatusOr<std::unique_ptr<MeshSequence>> test = OpenEvalTestSource(args.test, args.level);
+  StatusOr<std::unique_ptr<MeshSequence>> test =
+      OpenEvalTestSource(args.test, args.level, args.allow_partial);
   if (!test.ok()) return ReportError(test.status().WithContext("--test " + args.test));
+  if (args.allow_partial) WarnIfPartial(args.test);
 
   EvalOptions options;
   options.samples = args.samples;
@@ -47,8 +51,8 @@ int RunEval(const EvalArguments& args) {
   options.peak = args.peak;
   options.ref_first = args.ref_first;
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, (*test)->frame_count());
-    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    StatusOr<std::pair<int, int>> range = FramesOption(args.frames, (*test)->frame_count());
+    if (!range.ok()) return ReportError(range.status());
     options.first_frame = range->first;
     options.end_frame = range->second;
   }
@@ -61,10 +65,11 @@ int RunEval(const EvalArguments& args) {
     // The descriptions name files, which may not be UTF-8 as the JSON writer needs.
     result->ref_description = ToValidUtf8(result->ref_description);
     result->test_description = ToValidUtf8(result->test_description);
-    const Status written = WriteEvalJson(*result, args.json);
+    const Status written = WriteJsonOutput(args.json, EvalResultToJson(*result));
     if (!written.ok()) return ReportError(written);
   }
-  std::fputs(FormatEvalTable(*result).c_str(), stdout);
+  // The table goes to stdout, unless the JSON does.
+  std::fputs(FormatEvalTable(*result).c_str(), args.json == "-" ? stderr : stdout);
   return 0;
 }
 
@@ -100,7 +105,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "reference's). Given, even as 0, the reference may run on past the test's\n"
                   "last frame; not given, both must have as many frames")
       ->check(AtLeastZero());
-  cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write the results"));
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")
       ->default_val(200000)
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
@@ -110,6 +115,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--peak", args->peak, "Override the PSNR peak p (data units)")
       ->check(AboveZero());
   cmd->add_option("--seed", args->seed, "Sampling seed")->default_val(1);
+  AddAllowPartialFlag(cmd, &args->allow_partial);
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar");
   cmd->callback([args, exit_code] { *exit_code = RunEval(*args); });
 }

@@ -8,6 +8,7 @@
 
 #include "codec/dec/mvid_decoder.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/mvid_input.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/export/gltf_export.h"
@@ -23,6 +24,7 @@ struct ExportArguments {
   int level = -1;
   std::string frames;
   bool quiet = false;
+  bool allow_partial = false;
 };
 
 bool EndsWith(const std::string& text, const std::string& suffix) {
@@ -43,15 +45,17 @@ int RunExport(const ExportArguments& args) {
     std::fprintf(stderr, "meshvid: -o must end in .obj (OBJ + PC2) or .glb (glTF binary)\n");
     return 2;
   }
-  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(args.file);
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder =
+      MvidDecoder::OpenFile(args.file, {.allow_partial = args.allow_partial});
   if (!decoder.ok()) return ReportError(decoder.status());
+  if (args.allow_partial) WarnIfPartial(args.file);
   ExportOptions options;
   options.level = args.level;
   if (!args.frames.empty()) {
     const int addressable = static_cast<int>(std::min<std::uint32_t>(
         (*decoder)->info().frame_count, std::numeric_limits<int>::max()));
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, addressable);
-    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    StatusOr<std::pair<int, int>> range = FramesOption(args.frames, addressable);
+    if (!range.ok()) return ReportError(range.status());
     options.first_frame = static_cast<std::uint32_t>(range->first);
     options.end_frame = static_cast<std::uint32_t>(range->second);
   }
@@ -60,7 +64,7 @@ int RunExport(const ExportArguments& args) {
     StatusOr<std::vector<MeshCacheFiles>> files =
         ExportMeshCache(**decoder, args.output, options, bar.Callback());
     bar.Finish();
-    if (!files.ok()) return ReportError(files.status().WithContext(args.file));
+    if (!files.ok()) return ReportError(files.status());
     if (!args.quiet) {
       for (const MeshCacheFiles& f : *files) {
         std::fprintf(stderr, "key group %u, frames %u..%u: %s + %s\n", f.key_group,
@@ -72,10 +76,11 @@ int RunExport(const ExportArguments& args) {
   }
   StatusOr<GltfExportStats> stats = ExportGltf(**decoder, args.output, options, bar.Callback());
   bar.Finish();
-  if (!stats.ok()) return ReportError(stats.status().WithContext(args.file));
+  if (!stats.ok()) return ReportError(stats.status());
   if (!args.quiet) {
-    std::fprintf(stderr, "%s: %u key groups, %u joints, %u frames at %.3g fps (%zu bytes)\n",
-                 args.output.c_str(), stats->key_groups, stats->joints, stats->frames,
+    std::fprintf(stderr, "%s: %s, %s, %s at %.3g fps (%zu bytes)\n", args.output.c_str(),
+                 Count(stats->key_groups, "key group").c_str(),
+                 Count(stats->joints, "joint").c_str(), Count(stats->frames, "frame").c_str(),
                  (*decoder)->info().frame_rate, stats->bytes);
   }
   return 0;
@@ -102,6 +107,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
                   "Resolution level of the OBJ + PC2 export, 0 (base) .. L (default: finest)")
       ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  AddAllowPartialFlag(cmd, &args->allow_partial);
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
   cmd->callback([args, exit_code] { *exit_code = RunExport(*args); });
 }

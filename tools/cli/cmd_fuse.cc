@@ -42,14 +42,17 @@ double PeakMemoryMegabytes() {
 }
 
 int RunFuse(const FuseArguments& args) {
-  StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.capture);
+  StatusOr<std::unique_ptr<CaptureSequence>> capture =
+      CaptureSequence::OpenWithoutChecking(args.capture);
   if (!capture.ok()) return ReportError(capture.status());
   int first = 0, end = (*capture)->frame_count();
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, end);
-    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+    StatusOr<std::pair<int, int>> range = FramesOption(args.frames, end);
+    if (!range.ok()) return ReportError(range.status());
     std::tie(first, end) = *range;
   }
+  const Status files = (*capture)->CheckViewFiles(first, end);
+  if (!files.ok()) return ReportError(files);
   std::optional<FilePattern> output;
   if (!args.output.empty()) {
     StatusOr<FilePattern> pattern = FilePattern::Parse(args.output);
@@ -94,17 +97,18 @@ int RunFuse(const FuseArguments& args) {
   bar.Finish();
   const int count = end - first;
   const double peak = PeakMemoryMegabytes();
-  std::printf("Fused frames %d..%d of %s: %d failed, %.3f s a frame (%.2f frames/s), peak "
-              "memory %.0f MB\n",
-              first, end - 1, args.capture.c_str(), failures, fuse_seconds / count,
-              fuse_seconds > 0 ? count / fuse_seconds : 0.0, peak);
+  std::fprintf(stderr,
+               "Fused frames %d..%d of %s: %d failed, %.3f s a frame (%.2f frames/s), peak "
+               "memory %.0f MB\n",
+               first, end - 1, args.capture.c_str(), failures, fuse_seconds / count,
+               fuse_seconds > 0 ? count / fuse_seconds : 0.0, peak);
   if (!args.json.empty()) {
     const nlohmann::json summary = {{"capture", ToValidUtf8(args.capture)},
                                     {"frames", frames},
                                     {"failures", failures},
                                     {"fuse_seconds", fuse_seconds},
                                     {"peak_memory_mb", peak}};
-    const Status written = WriteFileAtomically(args.json, DumpJson(summary, 2) + "\n");
+    const Status written = WriteJsonOutput(args.json, DumpJson(summary, 2) + "\n");
     if (!written.ok()) return ReportError(written);
   }
   return failures == 0 ? 0 : 1;
@@ -123,10 +127,10 @@ void AddFuseCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("capture", args->capture,
                   "Capture: manifest.json, .conf, or a {frame}+{view} pattern")
       ->required();
-  cmd->add_option("-o,--output", args->output,
+  cmd->add_option("-o,--out", args->output,
                   "Write the surfaces here, e.g. fused/f{frame:04}.ply (PLY or OBJ)");
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
-  cmd->add_option("--json", args->json, "Also write per-frame figures as JSON to this file");
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write per-frame figures"));
   cmd->add_option("--voxel", args->fusion.spacing,
                   "Voxel size in the capture's units (default: from the views' sample spacing)")
       ->check(AtLeastZero());

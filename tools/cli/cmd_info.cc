@@ -1,14 +1,14 @@
 // `meshvid info`: what a .mvid holds, and with --check whether it is intact.
 #include <cstdio>
 #include <memory>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "codec/dec/mvid_decoder.h"
 #include "format/validate.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"
+#include "tools/cli/mvid_input.h"
 #include "tools/cli/terminal.h"
 
 namespace meshvid::cli {
@@ -17,7 +17,7 @@ namespace {
 struct InfoArguments {
   std::string file;
   bool check = false;
-  bool json = false;
+  std::string json;  ///< --json TARGET: a file, or "-" for stdout
 };
 
 /// Decodes every group once (transforms and video), so a damaged stream is found.
@@ -38,16 +38,24 @@ int RunInfo(const InfoArguments& args) {
   if (args.check) {
     StatusOr<ValidationReport> report = ValidateContainerFile(args.file);
     if (!report.ok()) return ReportError(report.status());
-    if (!args.json) std::fputs(report->ToText().c_str(), stdout);
+    if (args.json != "-") std::fputs(report->ToText().c_str(), stdout);
+    // The report above lists the problems; stderr says only that the check failed.
+    if (!report->ok() && args.json != "-") {
+      std::fprintf(stderr, "meshvid: %s: the check failed (%s, listed above)\n", args.file.c_str(),
+                   Count(report->errors.size(), "problem").c_str());
+      return 1;
+    }
     if (!report->ok()) return ReportError(report->ToStatus());
   }
-  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(args.file);
+  // info describes a partial file too (and says so); --check fails on it.
+  StatusOr<std::unique_ptr<MvidDecoder>> decoder =
+      MvidDecoder::OpenFile(args.file, {.allow_partial = true});
   if (!decoder.ok()) return ReportError(decoder.status());
   const MvidInfo& info = (*decoder)->info();
   StatusOr<MvidStreamSizes> sizes = (*decoder)->MeasureStreams();
   if (!sizes.ok()) return ReportError(sizes.status());
   if (args.check) {
-    ProgressBar bar(args.json);
+    ProgressBar bar(args.json == "-");
     const Status decoded = DecodeEveryGroup(**decoder, bar.Callback());
     bar.Finish();
     if (!decoded.ok()) return ReportError(decoded.WithContext(args.file));
@@ -59,16 +67,11 @@ int RunInfo(const InfoArguments& args) {
     if (!described.ok()) return ReportError(described.status());
     key_groups.push_back(*std::move(described));
   }
-  if (info.declared_frame_count != 0 && info.declared_frame_count != info.frame_count) {
-    std::fprintf(stderr,
-                 "meshvid: warning: %s: its header declares %u frames but its groups hold %u "
-                 "readable frames (the file is cut or damaged; info --check tells more)\n",
-                 args.file.c_str(), info.declared_frame_count, info.frame_count);
-  }
+  WarnIfPartial(args.file);
   const double frames = std::max<double>(1, info.frame_count);
   const double bytes_per_frame = info.file_bytes / frames;
   const double mbits = bytes_per_frame * 8 * info.frame_rate / 1e6;
-  if (args.json) {
+  if (!args.json.empty()) {
     nlohmann::json key_group_list = nlohmann::json::array();
     for (std::size_t k = 0; k < key_groups.size(); ++k) {
       const MvidKeyGroupInfo& g = key_groups[k];
@@ -87,6 +90,8 @@ int RunInfo(const InfoArguments& args) {
     nlohmann::json j = {
         {"file", args.file},
         {"frames", info.frame_count},
+        {"declared_frames", info.declared_frame_count},
+        {"partial", info.partial()},
         {"frame_rate", info.frame_rate},
         {"duration_s", info.frame_count / info.frame_rate},
         {"groups", info.gof_count},
@@ -112,19 +117,25 @@ int RunInfo(const InfoArguments& args) {
         {"checked", args.check},
         {"metadata", nlohmann::json::parse(info.metadata_json.empty() ? "{}" : info.metadata_json,
                                            nullptr, /*allow_exceptions=*/false)}};
-    std::printf("%s\n", DumpJson(j, 2).c_str());
-    return 0;
+    const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
+    if (!written.ok()) return ReportError(written);
+    if (args.json == "-") return 0;
   }
-  std::printf("%s: %u frames at %.3g fps (%.2f s) in %u groups of up to %u frames%s\n",
-              args.file.c_str(), info.frame_count, info.frame_rate,
-              info.frame_count / info.frame_rate, info.gof_count, info.gof_size,
+  std::printf("%s: %s at %.3g fps (%.2f s) in %s of up to %s%s\n", args.file.c_str(),
+              Count(info.frame_count, "frame").c_str(), info.frame_rate,
+              info.frame_count / info.frame_rate, Count(info.gof_count, "group").c_str(),
+              Count(info.gof_size, "frame").c_str(),
               info.indexed ? "" : " (no index: groups found by scanning)");
   std::printf("  key groups     %zu (a base mesh each; the same triangles within each)\n",
               key_groups.size());
+  if (info.partial()) {
+    std::printf("  partial        %u of the %u frames the header promises are readable\n",
+                info.frame_count, info.declared_frame_count);
+  }
   std::printf("  base mesh      %zu vertices, %zu triangles in key group 0; all bases %s (Draco)\n",
               info.base_vertices, info.base_triangles, Kilobytes(sizes->base_bytes).c_str());
-  std::printf("  motion         %u segments in key group 0: blend weights %s, transforms %s\n",
-              info.segments, Kilobytes(sizes->motion_bytes).c_str(),
+  std::printf("  motion         %s in key group 0: blend weights %s, transforms %s\n",
+              Count(info.segments, "segment").c_str(), Kilobytes(sizes->motion_bytes).c_str(),
               Kilobytes(sizes->transform_bytes).c_str());
   std::printf("  displacements  %s 10-bit %dx%d, %s\n",
               std::string(VideoCodecName(info.codec)).c_str(), info.picture_width,
@@ -159,7 +170,10 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       "every chunk and CRC and decode every group; exits 1 if anything is wrong.");
   cmd->add_option("FILE", args->file, "The .mvid file")->required();
   cmd->add_flag("--check", args->check, "Validate the file and decode every group");
-  cmd->add_flag("--json", args->json, "Print JSON instead of text");
+  cmd->add_option("--json", args->json,
+                  JsonOptionHelp("Also write what the file holds") +
+                      "; with -, the text\n"
+                      "report is not printed");
   cmd->callback([args, exit_code] { *exit_code = RunInfo(*args); });
 }
 

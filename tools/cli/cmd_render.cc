@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/mvid_input.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
@@ -28,6 +29,7 @@ struct RenderArguments {
   int crf = 20;
   bool no_labels = false;
   bool quiet = false;
+  bool allow_partial = false;
 };
 
 int RunRender(const RenderArguments& args) {
@@ -36,6 +38,11 @@ int RunRender(const RenderArguments& args) {
   options.inputs.insert(options.inputs.end(), args.compare.begin(), args.compare.end());
   options.output = args.output;
   options.level = args.level;
+  options.allow_partial = args.allow_partial;
+  if (args.allow_partial) {
+    for (const std::string& input : options.inputs) WarnIfPartial(input);
+    WarnIfPartial(args.error_against);
+  }
   options.error_against = args.error_against;
   options.error_max_mm = args.error_max_mm;
   options.labels = !args.no_labels;
@@ -51,8 +58,8 @@ int RunRender(const RenderArguments& args) {
   }
   if (!args.frames.empty()) {
     StatusOr<std::pair<int, int>> range =
-        ParseFrameRange(args.frames, std::numeric_limits<int>::max());
-    if (!range.ok()) return ReportError(range.status().WithContext("--frames"));
+        FramesOption(args.frames, std::numeric_limits<int>::max());
+    if (!range.ok()) return ReportError(range.status());
     options.first_frame = range->first;
     // "A:" (to the end) parses as A:INT_MAX: render as many as every input has.
     options.end_frame = range->second == std::numeric_limits<int>::max() ? -1 : range->second;
@@ -61,6 +68,9 @@ int RunRender(const RenderArguments& args) {
   StatusOr<RenderJobStats> stats = RunRenderJob(options, bar.Callback());
   bar.Finish();
   if (!stats.ok()) return ReportError(stats.status());
+  if (!stats->clipped_frames.empty()) {
+    std::fprintf(stderr, "meshvid: warning: --frames: %s\n", stats->clipped_frames.c_str());
+  }
   if (!args.quiet) {
     std::fprintf(stderr, "Rendered %d frame%s of %dx%d in %.2f s (%.1f frames/s) to %s%s%s",
                  stats->frames, stats->frames == 1 ? "" : "s", stats->width, stats->height,
@@ -116,6 +126,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--crf", args->crf, "MP4 quality, x264/x265 CRF 0..51 (default 20)")
       ->check(CLI::Range(0, 51));
   cmd->add_flag("--no-labels", args->no_labels, "No panel names or frame number");
+  AddAllowPartialFlag(cmd, &args->allow_partial);
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
   cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });
 }

@@ -1,10 +1,12 @@
 // `meshvid simulate`: a multi-view range-camera capture of ground truth.
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <utility>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
 #include "tools/sim/ground_truth.h"
@@ -85,6 +87,40 @@ std::string HumanBytes(long long bytes) {
   return text;
 }
 
+/// "+z", "-y", or the components: the direction the rig looks from.
+std::string DirectionText(const Eigen::Vector3d& d) {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(std::abs(d[a]) - 1.0) < 1e-6)
+      return (d[a] > 0 ? "+" : "-") + std::string(kAxes[a]);
+  }
+  char text[64];
+  std::snprintf(text, sizeof(text), "(%.2f, %.2f, %.2f)", d.x(), d.y(), d.z());
+  return text;
+}
+
+/// Where the cameras look from, and a hint when the subject looks side-on from there (a
+/// person is wider across the shoulders than deep).
+std::string FacingText(const SimulateSummary& s, const SimulateArgs& args) {
+  char text[400];
+  std::snprintf(text, sizeof(text),
+                "The rig's centre looks at the subject from %s (azimuth %g deg about +%s; "
+                "--azimuth turns it)",
+                DirectionText(s.rig_direction).c_str(), args.azimuth, args.up.c_str());
+  std::string out = text;
+  constexpr double kSideOnRatio = 1.2;
+  if (s.depth_over_width > kSideOnRatio) {
+    std::snprintf(text, sizeof(text),
+                  ". Seen from there the subject is %.1fx deeper than wide: it may be side-on "
+                  "to the cameras (--azimuth 90 or -90 would face its wide side).",
+                  s.depth_over_width);
+    out += text;
+  } else {
+    out += ".";
+  }
+  return out;
+}
+
 int RunSimulate(const SimulateArgs& args) {
   SimulateOptions options;
   if (Status status = BuildOptions(args, &options); !status.ok()) {
@@ -96,9 +132,9 @@ int RunSimulate(const SimulateArgs& args) {
   if (!ground_truth.ok()) return ReportError(ground_truth.status());
   MeshSequence& sequence = **ground_truth;
   if (!args.frames.empty()) {
-    StatusOr<std::pair<int, int>> range = ParseFrameRange(args.frames, sequence.frame_count());
+    StatusOr<std::pair<int, int>> range = FramesOption(args.frames, sequence.frame_count());
     if (!range.ok()) {
-      ReportError(range.status().WithContext("--frames"));
+      ReportError(range.status());
       return 2;
     }
     options.first_frame = range->first;
@@ -112,20 +148,20 @@ int RunSimulate(const SimulateArgs& args) {
   if (!args.quiet) {
     const SimulateSummary& s = *summary;
     const double view_frames = static_cast<double>(s.frames) * s.views;
-    std::printf(
+    std::fprintf(
+        stderr,
         "Simulated %d frame%s x %d view%s (%dx%d, %s layout) of %s into %s: on average %.0f "
         "samples per view and frame, %.1f%% of pixels hit the subject and %.1f%% were kept "
         "(noise %g, grazing limit %g deg, drop-out %g); %s written in %.2f s (%.1f frames/s). "
         "Open it with %s.\n",
-        s.frames, s.frames == 1 ? "" : "s", s.views, s.views == 1 ? "" : "s",
-        options.rig.width, options.rig.height,
-        options.rig.layout == RigLayout::kArc ? "arc" : "ring", sequence.description().c_str(),
-        args.out_dir.c_str(), s.samples / view_frames,
+        s.frames, s.frames == 1 ? "" : "s", s.views, s.views == 1 ? "" : "s", options.rig.width,
+        options.rig.height, options.rig.layout == RigLayout::kArc ? "arc" : "ring",
+        sequence.description().c_str(), args.out_dir.c_str(), s.samples / view_frames,
         s.pixels > 0 ? 100.0 * s.hit_pixels / s.pixels : 0.0,
         s.pixels > 0 ? 100.0 * s.samples / s.pixels : 0.0, options.sensor.noise_sigma,
-        options.sensor.max_angle_deg, options.sensor.dropout,
-        HumanBytes(s.output_bytes).c_str(), s.seconds,
-        s.seconds > 0 ? s.frames / s.seconds : 0.0, s.manifest_path.c_str());
+        options.sensor.max_angle_deg, options.sensor.dropout, HumanBytes(s.output_bytes).c_str(),
+        s.seconds, s.seconds > 0 ? s.frames / s.seconds : 0.0, s.manifest_path.c_str());
+    std::fprintf(stderr, "%s\n", FacingText(s, args).c_str());
   }
   return 0;
 }

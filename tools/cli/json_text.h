@@ -5,15 +5,23 @@
 #ifndef MESHVID_TOOLS_CLI_JSON_TEXT_H_
 #define MESHVID_TOOLS_CLI_JSON_TEXT_H_
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
-#include <nlohmann/json.hpp>
+#include "format/status.h"
 
 namespace meshvid::cli {
 
 /// `j` as JSON text (`indent` < 0: one line), invalid UTF-8 in its strings replaced by U+FFFD.
 std::string DumpJson(const nlohmann::json& j, int indent = -1);
+
+/// The machine-readable output of a command given as `--json TARGET`: `text` written to the
+/// file TARGET (atomically), or to stdout when TARGET is "-".
+Status WriteJsonOutput(const std::string& target, const std::string& text);
+
+/// The help of every command's --json option: what is written, then how TARGET is read.
+std::string JsonOptionHelp(const std::string& what);
 
 /// `text` with every byte that is not part of valid UTF-8 replaced by U+FFFD, for strings
 /// that other code (a library's JSON writer) dumps.

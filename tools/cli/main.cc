@@ -1,10 +1,10 @@
 // meshvid: codec and file format for captured dynamic 3D surfaces.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "meshvid/version.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/internal_error.h"
 
@@ -23,17 +23,18 @@ int Run(int argc, char** argv) {
       "Exit status: 0 done; 1 the command failed (bad or missing data, an error reading or\n"
       "writing); 2 the command line is wrong (an unknown command or option, a value out of\n"
       "range); 3 an internal error (a bug: please report it).\n");
-  app.set_version_flag("--version", "meshvid 0.1.0");
+  app.set_version_flag("--version", "meshvid " MESHVID_VERSION_STRING);
   int exit_code = 0;
+  // In the order of the work: capture, encode, look, decode, use, measure.
   meshvid::cli::AddSimulateCommand(app, &exit_code);
-  meshvid::cli::AddEvalCommand(app, &exit_code);
-  meshvid::cli::AddInfoCommand(app, &exit_code);
   meshvid::cli::AddEncodeCommand(app, &exit_code);
-  meshvid::cli::AddBenchCommand(app, &exit_code);
+  meshvid::cli::AddInfoCommand(app, &exit_code);
   meshvid::cli::AddDecodeCommand(app, &exit_code);
-  meshvid::cli::AddFuseCommand(app, &exit_code);
   meshvid::cli::AddExportCommand(app, &exit_code);
   meshvid::cli::AddRenderCommand(app, &exit_code);
+  meshvid::cli::AddEvalCommand(app, &exit_code);
+  meshvid::cli::AddFuseCommand(app, &exit_code);
+  meshvid::cli::AddBenchCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

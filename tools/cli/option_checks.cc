@@ -1,7 +1,10 @@
 #include "tools/cli/option_checks.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
+
+#include "tools/io/file_pattern.h"
 
 namespace meshvid::cli {
 namespace {
@@ -25,5 +28,13 @@ CLI::Validator AgainstZero(bool allow_zero) {
 
 CLI::Validator AtLeastZero() { return AgainstZero(true); }
 CLI::Validator AboveZero() { return AgainstZero(false); }
+
+StatusOr<std::pair<int, int>> FramesOption(const std::string& text, int frame_count) {
+  std::string clipped;
+  StatusOr<std::pair<int, int>> range = ParseFrameRange(text, frame_count, &clipped);
+  if (!range.ok()) return range.status().WithContext("--frames");
+  if (!clipped.empty()) std::fprintf(stderr, "meshvid: warning: --frames: %s\n", clipped.c_str());
+  return range;
+}
 
 }  // namespace meshvid::cli

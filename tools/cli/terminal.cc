@@ -11,13 +11,22 @@ int ReportError(const Status& status) {
   return 1;
 }
 
+std::string Count(std::size_t n, std::string_view noun, std::string_view plural) {
+  std::string text = std::to_string(n) + " ";
+  if (n == 1) return text.append(noun);
+  return plural.empty() ? text.append(noun).append("s") : text.append(plural);
+}
+
 std::string Kilobytes(double bytes) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f kB", bytes / 1000.0);
   return text;
 }
 
-ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0) {}
+ProgressBar::ProgressBar(bool quiet)
+    : quiet_(quiet),
+      tty_(isatty(STDERR_FILENO) != 0),
+      last_draw_(std::chrono::steady_clock::now()) {}
 
 ProgressBar::~ProgressBar() { Finish(); }
 
@@ -38,7 +47,7 @@ void ProgressBar::Message(std::string_view line) {
   if (drawn_ && tty_) std::fputs("\r\033[K", stderr);
   drawn_ = false;
   std::fprintf(stderr, "%.*s\n", static_cast<int>(line.size()), line.data());
-  last_draw_ = {};  // redraw the bar at the next update
+  if (tty_) last_draw_ = {};  // redraw the bar at the next update
   std::fflush(stderr);
 }
 
@@ -49,12 +58,17 @@ void ProgressBar::Draw(std::string_view stage, long done, long total) {
     Finish();
     stage_ = std::string(stage);
     stage_start_ = now;
-    last_draw_ = {};
+    if (tty_) last_draw_ = {};
   }
   const bool last = total > 0 && done >= total;
-  // Redraw a terminal bar at most 10 times a second; print a plain line every 5 seconds.
-  const auto min_gap = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(5000);
-  if (!last && now - last_draw_ < min_gap) return;
+  if (tty_) {
+    // Redraw a terminal bar at most 10 times a second, and at the end of each stage.
+    if (!last && now - last_draw_ < std::chrono::milliseconds(100)) return;
+  } else {
+    // A log gets one plain line every 5 seconds at most, whatever the stages do (an
+    // encode's stages interleave and nest), and nothing for work shorter than that.
+    if (now - last_draw_ < std::chrono::seconds(5)) return;
+  }
   last_draw_ = now;
   const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
   const double fraction = total > 0 ? static_cast<double>(done) / total : 0.0;

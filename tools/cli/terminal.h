@@ -4,6 +4,7 @@
 #define MESHVID_TOOLS_CLI_TERMINAL_H_
 
 #include <chrono>
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -15,11 +16,14 @@ namespace meshvid::cli {
 /// Prints "meshvid: <status>" to stderr and returns the exit code for it (1).
 int ReportError(const Status& status);
 
+/// "1 key group", "3 key groups": a count and its noun (`plural` defaults to noun + "s").
+std::string Count(std::size_t n, std::string_view noun, std::string_view plural = {});
+
 /// A byte count as the commands print it: "12.3 kB" (1 kB = 1000 bytes).
 std::string Kilobytes(double bytes);
 
 /// Draws progress on stderr: a redrawn bar with rate and ETA on a terminal, an occasional
-/// plain line otherwise (logs, CI), nothing if quiet.
+/// plain line at most every 5 seconds otherwise (logs, CI), nothing if quiet.
 class ProgressBar {
  public:
   explicit ProgressBar(bool quiet = false);

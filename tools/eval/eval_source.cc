@@ -27,7 +27,11 @@ bool LooksLikeCapture(const std::string& spec) {
     return pattern.ok() && pattern->has_view();
   }
   const std::string ext = LowerExtension(spec);
-  return ext == ".json" || ext == ".conf";
+  if (ext == ".json" || ext == ".conf") return true;
+  // A folder holding a manifest.json is a capture (as CaptureSequence::Open reads it), not a
+  // folder of meshes.
+  std::error_code error;
+  return std::filesystem::is_regular_file(std::filesystem::path(spec) / "manifest.json", error);
 }
 
 CaptureUnionSequence::CaptureUnionSequence(std::unique_ptr<CaptureSequence> capture)
@@ -60,10 +64,12 @@ std::string CaptureUnionSequence::description() const {
          " ...)";
 }
 
-StatusOr<std::unique_ptr<MvidSequence>> MvidSequence::Open(const std::string& path, int level) {
+StatusOr<std::unique_ptr<MvidSequence>> MvidSequence::Open(const std::string& path, int level,
+                                                           bool allow_partial) {
   std::unique_ptr<MvidSequence> sequence(new MvidSequence());
   sequence->path_ = path;
-  MESHVID_ASSIGN_OR_RETURN(sequence->decoder_, MvidDecoder::OpenFile(path));
+  MESHVID_ASSIGN_OR_RETURN(sequence->decoder_,
+                           MvidDecoder::OpenFile(path, {.allow_partial = allow_partial}));
   // MeshSequence counts frames in an int; a larger count (a damaged or hostile file) is
   // refused rather than wrapped negative.
   const std::uint32_t frames = sequence->decoder_->info().frame_count;
@@ -95,9 +101,11 @@ std::string MvidSequence::description() const {
   return path_ + " at level " + std::to_string(level_);
 }
 
-StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec, int level) {
+StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec, int level,
+                                                           bool allow_partial) {
   if (spec.size() > 5 && spec.compare(spec.size() - 5, 5, ".mvid") == 0) {
-    MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidSequence> mvid, MvidSequence::Open(spec, level));
+    MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidSequence> mvid,
+                             MvidSequence::Open(spec, level, allow_partial));
     return std::unique_ptr<MeshSequence>(std::move(mvid));
   }
   if (LooksLikeCapture(spec)) {

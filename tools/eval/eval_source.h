@@ -15,8 +15,8 @@
 
 namespace meshvid {
 
-/// True if `spec` names a capture rather than a mesh sequence: a `.json` manifest, a Stanford
-/// `.conf` file, or a pattern with a `{view}` placeholder.
+/// True if `spec` names a capture rather than a mesh sequence: a `.json` manifest, a folder
+/// holding a manifest.json, a Stanford `.conf` file, or a pattern with a `{view}` placeholder.
 bool LooksLikeCapture(const std::string& spec);
 
 /// The raw input scans of a capture as a MeshSequence: frame t is the union (AppendMesh) of
@@ -37,8 +37,10 @@ class CaptureUnionSequence : public MeshSequence {
 /// A decoded .mvid at one level as a MeshSequence (same triangles at every frame).
 class MvidSequence : public MeshSequence {
  public:
-  /// Opens `path` and checks `level` (-1: the finest level stored).
-  static StatusOr<std::unique_ptr<MvidSequence>> Open(const std::string& path, int level);
+  /// Opens `path` and checks `level` (-1: the finest level stored); a partial file (cut or
+  /// damaged) is refused unless `allow_partial`, then gives its readable frames.
+  static StatusOr<std::unique_ptr<MvidSequence>> Open(const std::string& path, int level,
+                                                      bool allow_partial = false);
   int frame_count() const override;
   double frame_rate() const override;
   bool fixed_connectivity() const override { return true; }
@@ -54,9 +56,9 @@ class MvidSequence : public MeshSequence {
 
 /// Opens the test side of an evaluation: a .mvid decoded at `level` (-1: finest), a capture
 /// (see LooksLikeCapture; opened with CaptureSequence::Open) or anything OpenMeshSequence
-/// accepts.
-StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec,
-                                                           int level = -1);
+/// accepts. A partial .mvid is refused unless `allow_partial` (MvidSequence::Open).
+StatusOr<std::unique_ptr<MeshSequence>> OpenEvalTestSource(const std::string& spec, int level = -1,
+                                                           bool allow_partial = false);
 
 }  // namespace meshvid
 

@@ -302,7 +302,7 @@ StatusOr<GltfExportStats> ExportGltf(MvidDecoder& decoder, const std::string& pa
                                      const ProgressCallback& progress) {
   GltfExportStats stats;
   MESHVID_ASSIGN_OR_RETURN(const std::string glb, EncodeGltf(decoder, options, progress, &stats));
-  MESHVID_RETURN_IF_ERROR(WriteFileAtomically(path, glb).WithContext(path));
+  MESHVID_RETURN_IF_ERROR(WriteFileAtomically(path, glb));
   return stats;
 }
 

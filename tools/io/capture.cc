@@ -57,6 +57,39 @@ std::string ResolveBesides(const std::string& anchor_file, const std::string& re
 }
 
 StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequence::Open(const std::string& spec) {
+  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<CaptureSequence> capture, OpenWithoutChecking(spec));
+  MESHVID_RETURN_IF_ERROR(capture->CheckViewFiles(0, capture->frame_count()));
+  return capture;
+}
+
+Status CaptureSequence::CheckViewFiles(int first_frame, int end_frame) const {
+  first_frame = std::max(first_frame, 0);
+  end_frame = std::min(end_frame, frame_count());
+  int missing = 0;
+  std::string first_missing;
+  std::error_code error;
+  for (int frame = first_frame; frame < end_frame; ++frame) {
+    for (int view = 0; view < view_count(); ++view) {
+      const std::string& path = paths_[frame][view];
+      if (fs::is_regular_file(path, error)) continue;
+      if (missing++ == 0) {
+        first_missing =
+            path + " (frame " + std::to_string(frame) + ", view " + std::to_string(view) + ")";
+      }
+    }
+  }
+  if (missing == 0) return Status::Ok();
+  const bool every_frame = first_frame == 0 && end_frame == frame_count();
+  return NotFoundError(source_ + ": " + std::to_string(missing) + " of the " +
+                       std::to_string((end_frame - first_frame) * view_count()) + " view files" +
+                       (every_frame ? std::string()
+                                    : " of frames " + std::to_string(first_frame) + ".." +
+                                          std::to_string(end_frame - 1)) +
+                       " are missing, the first is " + first_missing);
+}
+
+StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequence::OpenWithoutChecking(
+    const std::string& spec) {
   if (FilePattern::LooksLikePattern(spec)) return CaptureSequenceBuilder::FromPattern(spec);
   const std::string extension = LowerExtension(spec);
   if (extension == ".json") return CaptureSequenceBuilder::FromManifest(spec);
@@ -78,24 +111,6 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::Make(
   if (view_count == 0) return InvalidArgumentError(source + ": the capture has no view");
   if (paths.empty()) return InvalidArgumentError(source + ": the capture has no frame");
   if (poses.empty()) poses.assign(view_count, Eigen::Isometry3d::Identity());
-  int missing = 0;
-  std::string first_missing;
-  std::error_code error;
-  for (std::size_t frame = 0; frame < paths.size(); ++frame) {
-    for (int view = 0; view < view_count; ++view) {
-      const std::string& path = paths[frame][view];
-      if (fs::is_regular_file(path, error)) continue;
-      if (missing++ == 0) {
-        first_missing =
-            path + " (frame " + std::to_string(frame) + ", view " + std::to_string(view) + ")";
-      }
-    }
-  }
-  if (missing > 0) {
-    return NotFoundError(source + ": " + std::to_string(missing) + " of the " +
-                         std::to_string(paths.size() * view_count) +
-                         " view files are missing, the first is " + first_missing);
-  }
   for (int view = 0; view < view_count; ++view) {
     for (const auto& frame_paths : paths) {
       if (IsDepthImagePath(frame_paths[view]) && !info.views[view].calibration.intrinsics) {
@@ -107,6 +122,7 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::Make(
     }
   }
   auto capture = std::make_unique<CaptureSequence>();
+  capture->source_ = source;
   info.frame_count = static_cast<int>(paths.size());
   capture->info_ = std::move(info);
   capture->paths_ = std::move(paths);

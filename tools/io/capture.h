@@ -47,8 +47,16 @@ class CaptureSequence {
   ///  - a Stanford `.conf` file (`bmesh FILE tx ty tz qi qj qk qr` lines): one frame, one view
   ///    per scan, each posed by its line.
   /// View files may be PLY, OBJ, or 16-bit PNG depth images (which need intrinsics).
-  /// Checks that every file exists; fails with a message naming the file otherwise.
+  /// Checks that every file exists (CheckViewFiles); fails with a message naming the file
+  /// otherwise.
   static StatusOr<std::unique_ptr<CaptureSequence>> Open(const std::string& spec);
+  /// As Open, but checks no view file: for a caller that reads some frames and checks only
+  /// theirs.
+  static StatusOr<std::unique_ptr<CaptureSequence>> OpenWithoutChecking(const std::string& spec);
+
+  /// Fails (not found) if a view file of frames [first_frame, end_frame) is missing, saying
+  /// how many are and naming the first.
+  Status CheckViewFiles(int first_frame, int end_frame) const;
 
   const CaptureInfo& info() const { return info_; }
   int frame_count() const { return info_.frame_count; }
@@ -65,6 +73,7 @@ class CaptureSequence {
 
  private:
   friend class CaptureSequenceBuilder;
+  std::string source_;  ///< the manifest, pattern or .conf, as messages name it
   CaptureInfo info_;
   /// Per frame, per view: file path; and per view an extra pose (Stanford .conf), applied
   /// after the extrinsics.

@@ -19,8 +19,9 @@ class CaptureFrameSource : public FrameSource {
   /// Parsed frames kept (samba's 3 views at 640x480: about 15 MB a frame).
   static constexpr int kCachedFrames = 12;
 
-  /// Opens a capture as CaptureSequence::Open does (a manifest.json, a file pattern with
-  /// {frame} and {view}, or a Stanford .conf).
+  /// Opens a capture as CaptureSequence::OpenWithoutChecking does (a manifest.json, a file
+  /// pattern with {frame} and {view}, or a Stanford .conf): the caller checks the view files
+  /// of the frames it reads (capture().CheckViewFiles).
   static StatusOr<std::unique_ptr<CaptureFrameSource>> Open(const std::string& spec);
   /// Serves the frames of an opened capture.
   explicit CaptureFrameSource(std::unique_ptr<CaptureSequence> capture);

@@ -215,7 +215,9 @@ StatusOr<std::map<std::pair<int, int>, std::string>> FilePattern::Scan() const {
   return found;
 }
 
-StatusOr<std::pair<int, int>> ParseFrameRange(const std::string& text, int frame_count) {
+StatusOr<std::pair<int, int>> ParseFrameRange(const std::string& text, int frame_count,
+                                              std::string* clipped) {
+  if (clipped != nullptr) clipped->clear();
   const auto malformed = [&]() {
     return InvalidArgumentError("frame range '" + text +
                                 "' is malformed: expected A:B (frames A..B-1), A:, :B or N, "
@@ -240,6 +242,11 @@ StatusOr<std::pair<int, int>> ParseFrameRange(const std::string& text, int frame
     return InvalidArgumentError("frame range '" + text + "' selects no frame of the " +
                                 std::to_string(frame_count) + " frames (0.." +
                                 std::to_string(frame_count - 1) + ")");
+  }
+  if (clipped != nullptr && last > frame_count) {
+    *clipped = "frame range '" + text + "' runs past the last of the " +
+               std::to_string(frame_count) + " frames: using " + std::to_string(clamped_first) +
+               ":" + std::to_string(clamped_last);
   }
   return std::make_pair(clamped_first, clamped_last);
 }

@@ -37,8 +37,12 @@ class FilePattern {
 };
 
 /// Parses a frame range "A:B" (half-open, frames A..B-1), "A:" (A to the end), ":B" or "N"
-/// (the single frame N), clamped to [0, frame_count). Fails if the range is empty or malformed.
-StatusOr<std::pair<int, int>> ParseFrameRange(const std::string& text, int frame_count);
+/// (the single frame N), clipped to [0, frame_count). Fails if no frame is left or the text is
+/// malformed. When an explicit end runs past the last frame and `clipped` is given, it receives
+/// a sentence saying what was used instead (callers show it as a warning); otherwise it is
+/// cleared.
+StatusOr<std::pair<int, int>> ParseFrameRange(const std::string& text, int frame_count,
+                                              std::string* clipped = nullptr);
 
 }  // namespace meshvid
 

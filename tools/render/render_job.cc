@@ -61,9 +61,10 @@ float RoundUpNicely(float value) {
   return 10 * power;
 }
 
-StatusOr<std::unique_ptr<MeshSequence>> OpenRenderInput(const std::string& spec, int level) {
+StatusOr<std::unique_ptr<MeshSequence>> OpenRenderInput(const std::string& spec, int level,
+                                                        bool allow_partial) {
   if (spec.starts_with("scene:")) return OpenGroundTruth(spec);
-  return OpenEvalTestSource(spec, level);
+  return OpenEvalTestSource(spec, level, allow_partial);
 }
 
 std::string PanelLabel(const std::string& spec, int level) {
@@ -98,19 +99,29 @@ StatusOr<RenderJobStats> RunRenderJob(const RenderJobOptions& options,
   std::vector<Panel> panels(options.inputs.size());
   int frames_available = std::numeric_limits<int>::max();
   for (std::size_t i = 0; i < panels.size(); ++i) {
-    MESHVID_ASSIGN_OR_RETURN(panels[i].source, OpenRenderInput(options.inputs[i], options.level));
+    MESHVID_ASSIGN_OR_RETURN(
+        panels[i].source, OpenRenderInput(options.inputs[i], options.level, options.allow_partial));
     panels[i].label = PanelLabel(options.inputs[i], options.level);
     panels[i].coloured = !options.error_against.empty() && options.inputs[i] != options.error_against;
     frames_available = std::min(frames_available, panels[i].source->frame_count());
   }
   std::unique_ptr<MeshSequence> reference;
   if (!options.error_against.empty()) {
-    MESHVID_ASSIGN_OR_RETURN(reference, OpenRenderInput(options.error_against, -1));
+    MESHVID_ASSIGN_OR_RETURN(reference,
+                             OpenRenderInput(options.error_against, -1, options.allow_partial));
     frames_available = std::min(frames_available, reference->frame_count());
   }
   const int first = options.first_frame;
   int end = options.end_frame < 0 ? frames_available : options.end_frame;
   if (!mp4 && !png_per_frame) end = std::min(end, first + 1);  // one PNG: one frame
+  std::string clipped_frames;
+  if (first >= 0 && first < frames_available && end > frames_available) {
+    clipped_frames = "frames " + std::to_string(first) + ":" + std::to_string(end) +
+                     " run past the " + std::to_string(frames_available) +
+                     " frames every input has: drawing " + std::to_string(first) + ":" +
+                     std::to_string(frames_available);
+    end = frames_available;
+  }
   if (first < 0 || first >= end || end > frames_available) {
     return InvalidArgumentError("render: frames " + std::to_string(first) + ":" +
                                 std::to_string(end) + " are not within the " +
@@ -122,6 +133,7 @@ StatusOr<RenderJobStats> RunRenderJob(const RenderJobOptions& options,
   const RenderCamera camera = FrameBounds(bounds, options.orbit, options.width, options.height);
 
   RenderJobStats stats;
+  stats.clipped_frames = clipped_frames;
   float error_max = options.error_max_mm / 1000.0f;
   std::unique_ptr<Mp4Writer> video;
   const int scale = options.height >= 400 ? 2 : 1;

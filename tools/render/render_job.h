@@ -25,6 +25,7 @@ struct RenderJobOptions {
   /// per frame) or OUT.mp4.
   std::string output;
   int level = -1;            ///< level of .mvid inputs (-1: finest)
+  bool allow_partial = false;  ///< read a cut or damaged .mvid's readable frames
   int first_frame = 0;
   int end_frame = -1;        ///< one past the last (-1: as many as every input has)
   int width = 640;           ///< of each panel
@@ -44,10 +45,13 @@ struct RenderJobStats {
   double seconds = 0;        ///< rendering and writing, inputs' decoding included
   float error_max_mm = 0;    ///< the colour scale's top, when colouring by error
   std::string video_codec;   ///< MP4 output: the encoder used
+  /// Set when the frames asked for run past those every input has: what was drawn instead.
+  std::string clipped_frames;
 };
 
 /// Opens one input of `meshvid render` (see RenderJobOptions::inputs).
-StatusOr<std::unique_ptr<MeshSequence>> OpenRenderInput(const std::string& spec, int level);
+StatusOr<std::unique_ptr<MeshSequence>> OpenRenderInput(const std::string& spec, int level,
+                                                        bool allow_partial = false);
 
 /// A short name for a panel: "input views", "ground truth" or the file name (and level).
 std::string PanelLabel(const std::string& spec, int level);

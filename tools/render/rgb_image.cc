@@ -183,7 +183,7 @@ StatusOr<std::string> EncodePng(const RgbImage& image) {
 
 Status WritePng(const std::string& path, const RgbImage& image) {
   MESHVID_ASSIGN_OR_RETURN(const std::string bytes, EncodePng(image));
-  return WriteFileAtomically(path, bytes).WithContext(path);
+  return WriteFileAtomically(path, bytes);
 }
 
 }  // namespace meshvid

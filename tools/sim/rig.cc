@@ -30,6 +30,20 @@ Eigen::Vector3d FrontVector(UpAxis up) {
   return up == UpAxis::kY ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(0, -1, 0);
 }
 
+Eigen::Vector3d RigCentreDirection(const RigOptions& options) {
+  return Eigen::AngleAxisd(options.azimuth_deg * std::numbers::pi / 180.0, UpVector(options.up)) *
+         FrontVector(options.up);
+}
+
+double DepthOverWidth(const Eigen::AlignedBox3d& subject, const Eigen::Vector3d& direction,
+                      UpAxis up) {
+  const Eigen::Vector3d across = UpVector(up).cross(direction);
+  const Eigen::Vector3d size = subject.sizes();
+  const double depth = size.cwiseProduct(direction.cwiseAbs()).sum();
+  const double width = size.cwiseProduct(across.cwiseAbs()).sum();
+  return width > 0 ? depth / width : 0.0;
+}
+
 StatusOr<std::vector<ViewCalibration>> PlaceCameras(const Eigen::AlignedBox3d& subject,
                                                     const RigOptions& options) {
   if (options.views < 1) {

@@ -45,6 +45,15 @@ PinholeIntrinsics RigIntrinsics(const RigOptions& options);
 Eigen::Vector3d UpVector(UpAxis up);
 Eigen::Vector3d FrontVector(UpAxis up);
 
+/// The unit direction from the subject towards the rig's centre: the arc's middle, or the
+/// ring's first view (the front turned by azimuth_deg about the up axis).
+Eigen::Vector3d RigCentreDirection(const RigOptions& options);
+
+/// How a box is seen from `direction` (horizontal, unit): its horizontal extent along that
+/// direction over its extent across it. Well above 1 for a person seen side-on.
+double DepthOverWidth(const Eigen::AlignedBox3d& subject, const Eigen::Vector3d& direction,
+                      UpAxis up);
+
 /// Places `options.views` cameras aiming at the centre of `subject` (the bounding box of every
 /// simulated frame), each as far as needed for the whole box to project inside its image.
 /// Fails on an empty box, fewer than one view, a bad image size or field of view.

@@ -175,6 +175,8 @@ StatusOr<SimulateSummary> SimulateCapture(MeshSequence& ground_truth, const std:
   SimulateSummary summary;
   summary.frames = frames;
   summary.views = static_cast<int>(views.size());
+  summary.rig_direction = RigCentreDirection(options.rig);
+  summary.depth_over_width = DepthOverWidth(box, summary.rig_direction, options.rig.up);
   const int view_count = summary.views;
   std::vector<std::vector<std::string>> paths(frames, std::vector<std::string>(view_count));
   const double frame_rate = ground_truth.frame_rate() > 0 ? ground_truth.frame_rate() : 25.0;

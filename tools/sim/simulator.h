@@ -39,6 +39,11 @@ struct SimulateSummary {
   long long output_bytes = 0;   ///< size of every file written
   double seconds = 0;           ///< wall time of the whole simulation
   std::string manifest_path;
+  /// Where the rig looks from: the unit direction from the subject to the rig's centre
+  /// (RigCentreDirection), and the subject's depth over width seen from there
+  /// (DepthOverWidth of the box over every simulated frame).
+  Eigen::Vector3d rig_direction = Eigen::Vector3d::Zero();
+  double depth_over_width = 0;
 };
 
 /// The view file name of capture frame `frame`, view `view`: "f0007_v2.ply".

@@ -271,7 +271,7 @@ int RunDracoDecodeCommand(const std::string& folder, const std::string& json, bo
                               {"seconds", summary->seconds},
                               {"frames_per_second", fps},
                               {"vertices", summary->vertices}};
-    const Status written = WriteFileAtomically(json, DumpJson(j, 2) + "\n");
+    const Status written = WriteJsonOutput(json, DumpJson(j, 2) + "\n");
     if (!written.ok()) return ReportError(written);
   }
   if (!quiet) {
@@ -311,7 +311,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--report", args->report, "The generated report (default: OUT/../RESULTS.md)");
   cmd->add_option("--frames", args->frames,
                   "Capture frames per sequence, 0: all (default: all; "
-                  "--quick: 10)");
+                  "--quick: 10)")
+      ->type_name("N");
   cmd->add_option("--samples", args->samples,
                   "meshvid eval samples per surface (default 200000; --quick: 50000)");
   cmd->add_option("--rigs", args->rigs, "Rigs as VIEWS-LAYOUT")->capture_default_str();
@@ -360,7 +361,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
   base->add_option("--json,--summary-json", baseline->summary_json,
-                   JsonOptionHelp("Write the measurements"));
+                   JsonOptionHelp("Write the measurements"))
+      ->type_name("FILE|-");
   base->add_flag("-q,--quiet", baseline->quiet, "No progress bar and no summary");
   base->callback([baseline, exit_code] { *exit_code = RunBaselineCommand(*baseline); });
 
@@ -375,7 +377,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       "timing the decoding alone.");
   draco->group("");  // hidden: meshvid bench runs it
   draco->add_option("FOLDER", decode->folder, "Folder of .drc files")->required();
-  draco->add_option("--json", decode->json, "Write the timing as JSON");
+  draco->add_option("--json", decode->json, JsonOptionHelp("Write the timing"))
+      ->type_name("FILE|-");
   draco->add_flag("-q,--quiet", decode->quiet, "No summary");
   draco->callback([decode, exit_code] {
     *exit_code = RunDracoDecodeCommand(decode->folder, decode->json, decode->quiet);

@@ -211,7 +211,8 @@ void AddDecodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--level", args->level,
                   "Resolution level 0 (base mesh) .. L (default: the finest stored)")
       ->check(AtLeastZero());
-  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
+      ->type_name("A:B");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary");
   cmd->add_flag("--normals", args->normals,
                 "Also write per-vertex normals (area-weighted; PLY nx ny nz, OBJ vn), as\n"
@@ -219,11 +220,10 @@ void AddDecodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--no-write", args->no_write,
                 "Decode every frame but write nothing; prints the decoding speed (one thread)");
   cmd->add_option("--json", args->json,
-                  JsonOptionHelp("Also write the timing and sizes (frames, seconds of decoding\n"
-                                 "without opening, open_seconds, frames_per_second, vertices\n"
-                                 "and triangles per key group, their mean, min and max)"));
+                  JsonOptionHelp("Also write the timing and the sizes per key group"))
+      ->type_name("FILE|-");
   AddAllowPartialFlag(cmd, &args->allow_partial);
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunDecode(*args); });
 }
 

@@ -335,7 +335,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "(cap/f{frame:04}_v{view}.ply) or a Stanford .conf")
       ->required();
   cmd->add_option("-o,--out", args->output, "The .mvid file to write")->required();
-  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
+      ->type_name("A:B");
   cmd->add_option("--codec", args->codec, "Displacement video codec: hevc, av1 or ffv1")
       ->capture_default_str();
   cmd->add_option("--quality", o.quality,
@@ -593,7 +594,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                 "(default: decode the whole base surface, unseen parts moved and filled)");
   cmd->add_option("--json,--summary-json", args->summary_json,
                   JsonOptionHelp("Also write the summary (bytes per stream, rate, timings, "
-                                 "key groups)"));
+                                 "key groups)"))
+      ->type_name("FILE|-");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   // The embedded deformation's settings, which the segmentation does not read, and the
   // segmentation's, which the deformation does not.

@@ -97,7 +97,8 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "Level at which a .mvid test is decoded (default: the finest stored)")
       ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames,
-                  "The test's frame range A:B (half-open), A:, :B or N");
+                  "The test's frame range A:B (half-open), A:, :B or N")
+      ->type_name("A:B");
   cmd->add_option("--ref-first", args->ref_first,
                   "The reference frame the test's frame 0 is measured against: N for a file\n"
                   "encoded with --frames N:... from a capture of the whole reference (test\n"
@@ -105,7 +106,8 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                   "reference's). Given, even as 0, the reference may run on past the test's\n"
                   "last frame; not given, both must have as many frames")
       ->check(AtLeastZero());
-  cmd->add_option("--json", args->json, JsonOptionHelp("Also write the results"));
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write the results"))
+      ->type_name("FILE|-");
   cmd->add_option("--samples", args->samples, "Samples per surface and frame")
       ->default_val(200000)
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
@@ -116,7 +118,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
       ->check(AboveZero());
   cmd->add_option("--seed", args->seed, "Sampling seed")->default_val(1);
   AddAllowPartialFlag(cmd, &args->allow_partial);
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar (the report is still printed)");
   cmd->callback([args, exit_code] { *exit_code = RunEval(*args); });
 }
 

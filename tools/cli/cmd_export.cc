@@ -106,9 +106,10 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--level", args->level,
                   "Resolution level of the OBJ + PC2 export, 0 (base) .. L (default: finest)")
       ->check(AtLeastZero());
-  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
+      ->type_name("A:B");
   AddAllowPartialFlag(cmd, &args->allow_partial);
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunExport(*args); });
 }
 

@@ -129,8 +129,10 @@ void AddFuseCommand(CLI::App& app, int* exit_code) {
       ->required();
   cmd->add_option("-o,--out", args->output,
                   "Write the surfaces here, e.g. fused/f{frame:04}.ply (PLY or OBJ)");
-  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N");
-  cmd->add_option("--json", args->json, JsonOptionHelp("Also write per-frame figures"));
+  cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
+      ->type_name("A:B");
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write per-frame figures"))
+      ->type_name("FILE|-");
   cmd->add_option("--voxel", args->fusion.spacing,
                   "Voxel size in the capture's units (default: from the views' sample spacing)")
       ->check(AtLeastZero());
@@ -150,7 +152,7 @@ void AddFuseCommand(CLI::App& app, int* exit_code) {
                   "Drop connected pieces with fewer than this share of the triangles")
       ->default_val(args->fusion.min_piece_share)
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar (the report is still printed)");
   cmd->callback([args, exit_code] { *exit_code = RunFuse(*args); });
 }
 

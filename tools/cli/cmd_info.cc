@@ -172,8 +172,8 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--check", args->check, "Validate the file and decode every group");
   cmd->add_option("--json", args->json,
                   JsonOptionHelp("Also write what the file holds") +
-                      "; with -, the text\n"
-                      "report is not printed");
+                      "\n(with -, instead of the text)")
+      ->type_name("FILE|-");
   cmd->callback([args, exit_code] { *exit_code = RunInfo(*args); });
 }
 

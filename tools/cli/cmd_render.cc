@@ -108,7 +108,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
       ->allow_extra_args(false);
   cmd->add_option("--frames", args->frames,
                   "Frame range A:B (half-open), A:, :B or N (default: all; a single PNG shows\n"
-                  "the first)");
+                  "the first)")
+      ->type_name("A:B");
   cmd->add_option("--level", args->level,
                   "Level of .mvid inputs, 0 (base) .. L (default: the finest stored)")
       ->check(AtLeastZero());
@@ -127,7 +128,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(0, 51));
   cmd->add_flag("--no-labels", args->no_labels, "No panel names or frame number");
   AddAllowPartialFlag(cmd, &args->allow_partial);
-  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });
 }
 

@@ -192,7 +192,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--dropout", args->dropout, "Probability that a sample is lost, in [0, 1)")
       ->capture_default_str();
   cmd->add_option("--frames", args->frames,
-                  "Ground-truth frames A:B (half-open; A:, :B or N) -> capture frames 0..B-A-1");
+                  "Ground-truth frames A:B (half-open; A:, :B or N) -> capture frames 0..B-A-1")
+      ->type_name("A:B");
   cmd->add_option("--seed", args->seed, "Seed of the noise and drop-outs")->capture_default_str();
   cmd->add_option("--max-angle", args->max_angle,
                   "Samples seen at more than this angle (degrees) from the normal are lost")

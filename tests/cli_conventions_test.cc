@@ -209,8 +209,13 @@ TEST(CliConventionsTest, CountsAgreeInNumber) {
 TEST(CliConventionsTest, JsonGoesToAFileOrStdoutAndSummariesToStderr) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
-  for (const std::string command : {"info '" + kThreeKeyGroups + "' --json -",
-                                    "decode '" + kThreeKeyGroups + "' --no-write -q --json -"}) {
+  for (const std::string command :
+       {"info '" + kThreeKeyGroups + "' --json -",
+        "decode '" + kThreeKeyGroups + "' --no-write -q --json -",
+        "export '" + kThreeKeyGroups + "' -o '" + dir.File("e.glb") + "' -q --json -",
+        "render '" + kThreeKeyGroups + "' -o '" + dir.File("r.png") + "' --size 32x32 -q --json -",
+        "simulate scene:cloth -o '" + dir.File("cap2") +
+            "' --frames 0:1 --res 80x60 -q --json -"}) {
     const testing::CliRun run = testing::RunMeshvid(command, dir);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_TRUE(nlohmann::json::accept(run.out)) << command << "\n" << run.out;

@@ -8,6 +8,7 @@
 
 #include "codec/dec/mvid_decoder.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/mvid_input.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
@@ -23,6 +24,7 @@ struct ExportArguments {
   std::string output;
   int level = -1;
   std::string frames;
+  std::string json;
   bool quiet = false;
   bool allow_partial = false;
 };
@@ -65,6 +67,18 @@ int RunExport(const ExportArguments& args) {
         ExportMeshCache(**decoder, args.output, options, bar.Callback());
     bar.Finish();
     if (!files.ok()) return ReportError(files.status());
+    if (!args.json.empty()) {
+      nlohmann::json list = nlohmann::json::array();
+      for (const MeshCacheFiles& f : *files) {
+        list.push_back({{"key_group", f.key_group},
+                        {"first_frame", f.first_frame},
+                        {"frames", f.frame_count},
+                        {"obj", ToValidUtf8(f.obj)},
+                        {"pc2", ToValidUtf8(f.pc2)}});
+      }
+      const Status written = WriteJsonOutput(args.json, DumpJson({{"files", list}}, 2) + "\n");
+      if (!written.ok()) return ReportError(written);
+    }
     if (!args.quiet) {
       for (const MeshCacheFiles& f : *files) {
         std::fprintf(stderr, "key group %u, frames %u..%u: %s + %s\n", f.key_group,
@@ -77,6 +91,15 @@ int RunExport(const ExportArguments& args) {
   StatusOr<GltfExportStats> stats = ExportGltf(**decoder, args.output, options, bar.Callback());
   bar.Finish();
   if (!stats.ok()) return ReportError(stats.status());
+  if (!args.json.empty()) {
+    const nlohmann::json j = {{"file", ToValidUtf8(args.output)},
+                              {"key_groups", stats->key_groups},
+                              {"joints", stats->joints},
+                              {"frames", stats->frames},
+                              {"bytes", stats->bytes}};
+    const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
+    if (!written.ok()) return ReportError(written);
+  }
   if (!args.quiet) {
     std::fprintf(stderr, "%s: %s, %s, %s at %.3g fps (%zu bytes)\n", args.output.c_str(),
                  Count(stats->key_groups, "key group").c_str(),
@@ -108,6 +131,8 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
       ->check(AtLeastZero());
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
       ->type_name("A:B");
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write what was written"))
+      ->type_name("FILE|-");
   AddAllowPartialFlag(cmd, &args->allow_partial);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunExport(*args); });

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/mvid_input.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
@@ -30,6 +31,7 @@ struct RenderArguments {
   bool no_labels = false;
   bool quiet = false;
   bool allow_partial = false;
+  std::string json;
 };
 
 int RunRender(const RenderArguments& args) {
@@ -68,6 +70,17 @@ int RunRender(const RenderArguments& args) {
   StatusOr<RenderJobStats> stats = RunRenderJob(options, bar.Callback());
   bar.Finish();
   if (!stats.ok()) return ReportError(stats.status());
+  if (!args.json.empty()) {
+    const nlohmann::json j = {{"file", ToValidUtf8(args.output)},
+                              {"frames", stats->frames},
+                              {"width", stats->width},
+                              {"height", stats->height},
+                              {"seconds", stats->seconds},
+                              {"error_max_mm", stats->error_max_mm},
+                              {"video_codec", stats->video_codec}};
+    const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
+    if (!written.ok()) return ReportError(written);
+  }
   if (!stats->clipped_frames.empty()) {
     std::fprintf(stderr, "meshvid: warning: --frames: %s\n", stats->clipped_frames.c_str());
   }
@@ -127,6 +140,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--crf", args->crf, "MP4 quality, x264/x265 CRF 0..51 (default 20)")
       ->check(CLI::Range(0, 51));
   cmd->add_flag("--no-labels", args->no_labels, "No panel names or frame number");
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write what was drawn"))
+      ->type_name("FILE|-");
   AddAllowPartialFlag(cmd, &args->allow_partial);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "tools/cli/commands.h"
+#include "tools/cli/json_text.h"
 #include "tools/cli/option_checks.h"
 #include "tools/cli/terminal.h"
 #include "tools/io/file_pattern.h"
@@ -34,6 +35,7 @@ struct SimulateArgs {
   double fov = 0.0;
   double frame_rate = 25.0;
   bool quiet = false;
+  std::string json;
 };
 
 /// Parses "WxH" into the rig's image size.
@@ -145,6 +147,22 @@ int RunSimulate(const SimulateArgs& args) {
       SimulateCapture(sequence, args.out_dir, options, bar.Callback());
   bar.Finish();
   if (!summary.ok()) return ReportError(summary.status());
+  if (!args.json.empty()) {
+    const SimulateSummary& s = *summary;
+    const nlohmann::json j = {
+        {"manifest", ToValidUtf8(s.manifest_path)},
+        {"frames", s.frames},
+        {"views", s.views},
+        {"pixels", s.pixels},
+        {"hit_pixels", s.hit_pixels},
+        {"samples", s.samples},
+        {"output_bytes", s.output_bytes},
+        {"seconds", s.seconds},
+        {"rig_direction", {s.rig_direction.x(), s.rig_direction.y(), s.rig_direction.z()}},
+        {"depth_over_width", s.depth_over_width}};
+    const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
+    if (!written.ok()) return ReportError(written);
+  }
   if (!args.quiet) {
     const SimulateSummary& s = *summary;
     const double view_frames = static_cast<double>(s.frames) * s.views;
@@ -215,6 +233,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--fps", args->frame_rate,
                   "Frame rate for ground truth that does not store one")
       ->capture_default_str();
+  cmd->add_option("--json", args->json, JsonOptionHelp("Also write the summary"))
+      ->type_name("FILE|-");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
   cmd->callback([args, exit_code] { *exit_code = RunSimulate(*args); });
 }

@@ -270,7 +270,7 @@ TEST(CliConventionsTest, ALogGetsAProgressLineEveryFiveSecondsAtMost) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::size_t progress_lines = 0;
-  const std::regex progress(": [0-9]+/[0-9]+ \\(");
+  const std::regex progress(": [0-9]+/[0-9]+\n");
   for (auto it = std::sregex_iterator(run.err.begin(), run.err.end(), progress);
        it != std::sregex_iterator(); ++it) {
     ++progress_lines;

@@ -84,8 +84,9 @@ void ProgressBar::Draw(std::string_view stage, long done, long total) {
                  eta);
     drawn_ = true;
   } else {
-    std::fprintf(stderr, "%.*s: %ld/%ld (%.1f/s)\n", static_cast<int>(stage_.size()), stage_.data(),
-                 done, total, rate);
+    // No rate: stages interleave in a log's 5 s, so a rate since the stage began means little.
+    std::fprintf(stderr, "%.*s: %ld/%ld\n", static_cast<int>(stage_.size()), stage_.data(), done,
+                 total);
   }
   std::fflush(stderr);
 }

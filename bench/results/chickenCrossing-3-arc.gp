@@ -15,16 +15,16 @@ $s0 << EOD
 99.3843 35.0310
 EOD
 $s1 << EOD
-3.19561 34.9903
-5.58576 34.9861
+0.82954 34.5916
+1.89956 34.5999
 EOD
 $s2 << EOD
-3.19561 34.9916
-5.58576 34.9861
+0.82954 34.6067
+1.89956 34.6065
 EOD
 $s3 << EOD
-3.19561 35.0013
-5.58576 34.9939
+0.82954 34.6100
+1.89956 34.6163
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

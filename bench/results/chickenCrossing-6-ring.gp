@@ -15,16 +15,16 @@ $s0 << EOD
 171.233 44.8019
 EOD
 $s1 << EOD
-2.93398 44.7122
-6.14754 44.6943
+1.33358 44.5887
+3.83296 44.5597
 EOD
 $s2 << EOD
-2.93398 44.7269
-6.14754 44.7072
+1.33358 44.6095
+3.83296 44.5865
 EOD
 $s3 << EOD
-2.93398 44.7485
-6.14754 44.7304
+1.33358 44.6321
+3.83296 44.6174
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \

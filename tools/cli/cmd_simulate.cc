@@ -222,8 +222,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--arc-step", args->arc_step, "Degrees between views of the arc layout")
       ->capture_default_str();
   cmd->add_option("--azimuth", args->azimuth,
-                  "Turn the whole rig by this many degrees about the up axis (0: centred on "
-                  "the front; samba's dancer faces +x: use 90)")
+                  "Turn the whole rig by this many degrees about the up axis (0: centred on\n"
+                  "the front; samba's dancer faces +x: use 90; the summary says when a\n"
+                  "subject looks side-on)")
       ->capture_default_str();
   cmd->add_option("--up", args->up, "Up axis of the data (front is +z for y, -y for z)")
       ->check(CLI::IsMember({"y", "z"}))

@@ -345,10 +345,7 @@ PYBIND11_MODULE(meshvid, m) {
           name = py::repr(py::str(path));
         }
         if (decoder->info().partial()) {
-          const std::string warning = name + ": partial file: only " +
-                                      std::to_string(decoder->info().frame_count) + " of the " +
-                                      std::to_string(decoder->info().declared_frame_count) +
-                                      " frames its header promises are readable";
+          const std::string warning = name + ": " + PartialFileText(decoder->info());
           PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1);
         }
         return File(std::move(decoder), name);

@@ -160,6 +160,12 @@ class MvidDecoder::StreamedGroups : public GroupSource {
   std::uint32_t next_frame_ = 0;
 };
 
+std::string PartialFileText(const MvidInfo& info) {
+  if (!info.partial()) return "";
+  return "partial file: only " + std::to_string(info.frame_count) + " of the " +
+         std::to_string(info.declared_frame_count) + " frames its header promises are readable";
+}
+
 StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenFile(const std::string& path,
                                                              const MvidDecoderOptions& options) {
   MESHVID_ASSIGN_OR_RETURN(ContainerReader reader, ContainerReader::OpenFile(path));
@@ -196,12 +202,9 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenIndexed(
     info.key_groups.push_back(span);
   }
   if (info.partial() && info.frame_count > 0 && !options.allow_partial) {
-    return CorruptError(decoder->name_ + ": partial file: only " +
-                        std::to_string(info.frame_count) + " of the " +
-                        std::to_string(info.declared_frame_count) +
-                        " frames its header promises are readable (the file is cut or "
-                        "damaged; open it with allow_partial, --allow-partial in meshvid, to "
-                        "read those)");
+    return CorruptError(decoder->name_ + ": " + PartialFileText(info) +
+                        " (the file is cut or damaged; open it with allow_partial, "
+                        "--allow-partial in meshvid, to read those)");
   }
   decoder->groups_ = std::make_unique<IndexedGroups>(std::move(reader));
   MESHVID_RETURN_IF_ERROR(decoder->LoadKeyGroup(0));

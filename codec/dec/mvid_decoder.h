@@ -76,6 +76,10 @@ struct MvidInfo {
   bool partial() const { return declared_frame_count > frame_count; }
 };
 
+/// "partial file: only 8 of the 12 frames its header promises are readable", the words every
+/// front end uses for a partial file (MvidInfo::partial), or "" for a whole one.
+std::string PartialFileText(const MvidInfo& info);
+
 /// Bytes of the per-group streams, summed over the readable groups.
 struct MvidStreamSizes {
   std::uint64_t transform_bytes = 0;  ///< group side information (transforms, ranges)

@@ -133,7 +133,7 @@ int RunDecode(const DecodeArguments& args) {
   StatusOr<std::unique_ptr<MvidDecoder>> decoder =
       MvidDecoder::OpenFile(args.file, {.allow_partial = args.allow_partial});
   if (!decoder.ok()) return ReportError(decoder.status());
-  if (args.allow_partial) WarnIfPartial(args.file);
+  if (args.allow_partial) WarnIfPartial(args.file, (*decoder)->info());
   const MvidInfo& info = (*decoder)->info();
   const int level = args.level < 0 ? info.levels : args.level;
   if (level > info.levels) {

@@ -50,7 +50,7 @@ int RunExport(const ExportArguments& args) {
   StatusOr<std::unique_ptr<MvidDecoder>> decoder =
       MvidDecoder::OpenFile(args.file, {.allow_partial = args.allow_partial});
   if (!decoder.ok()) return ReportError(decoder.status());
-  if (args.allow_partial) WarnIfPartial(args.file);
+  if (args.allow_partial) WarnIfPartial(args.file, (*decoder)->info());
   ExportOptions options;
   options.level = args.level;
   if (!args.frames.empty()) {

@@ -67,7 +67,7 @@ int RunInfo(const InfoArguments& args) {
     if (!described.ok()) return ReportError(described.status());
     key_groups.push_back(*std::move(described));
   }
-  WarnIfPartial(args.file);
+  WarnIfPartial(args.file, info);
   const double frames = std::max<double>(1, info.frame_count);
   const double bytes_per_frame = info.file_bytes / frames;
   const double mbits = bytes_per_frame * 8 * info.frame_rate / 1e6;

@@ -85,11 +85,10 @@ int RunRender(const RenderArguments& args) {
     std::fprintf(stderr, "meshvid: warning: --frames: %s\n", stats->clipped_frames.c_str());
   }
   if (!args.quiet) {
-    std::fprintf(stderr, "Rendered %d frame%s of %dx%d in %.2f s (%.1f frames/s) to %s%s%s",
-                 stats->frames, stats->frames == 1 ? "" : "s", stats->width, stats->height,
-                 stats->seconds, stats->seconds > 0 ? stats->frames / stats->seconds : 0.0,
-                 args.output.c_str(), stats->video_codec.empty() ? "" : " with ",
-                 stats->video_codec.c_str());
+    std::fprintf(stderr, "Rendered %s of %dx%d in %.2f s (%.1f frames/s) to %s%s%s",
+                 Count(stats->frames, "frame").c_str(), stats->width, stats->height, stats->seconds,
+                 stats->seconds > 0 ? stats->frames / stats->seconds : 0.0, args.output.c_str(),
+                 stats->video_codec.empty() ? "" : " with ", stats->video_codec.c_str());
     if (!args.error_against.empty()) {
       std::fprintf(stderr, "; colour scale 0..%.3g mm", stats->error_max_mm);
     }

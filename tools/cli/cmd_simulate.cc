@@ -168,11 +168,11 @@ int RunSimulate(const SimulateArgs& args) {
     const double view_frames = static_cast<double>(s.frames) * s.views;
     std::fprintf(
         stderr,
-        "Simulated %d frame%s x %d view%s (%dx%d, %s layout) of %s into %s: on average %.0f "
+        "Simulated %s x %s (%dx%d, %s layout) of %s into %s: on average %.0f "
         "samples per view and frame, %.1f%% of pixels hit the subject and %.1f%% were kept "
         "(noise %g, grazing limit %g deg, drop-out %g); %s written in %.2f s (%.1f frames/s). "
         "Open it with %s.\n",
-        s.frames, s.frames == 1 ? "" : "s", s.views, s.views == 1 ? "" : "s", options.rig.width,
+        Count(s.frames, "frame").c_str(), Count(s.views, "view").c_str(), options.rig.width,
         options.rig.height, options.rig.layout == RigLayout::kArc ? "arc" : "ring",
         sequence.description().c_str(), args.out_dir.c_str(), s.samples / view_frames,
         s.pixels > 0 ? 100.0 * s.hit_pixels / s.pixels : 0.0,

@@ -13,27 +13,26 @@ void AddAllowPartialFlag(CLI::App* cmd, bool* allow_partial) {
                 "failing on it");
 }
 
+void WarnIfPartial(const std::string& path, const MvidInfo& info) {
+  if (info.partial()) {
+    std::fprintf(stderr, "meshvid: warning: %s: %s; reading frames 0..%u\n", path.c_str(),
+                 PartialFileText(info).c_str(), info.frame_count == 0 ? 0 : info.frame_count - 1);
+  } else if (info.declared_frame_count > 0 && info.frame_count > info.declared_frame_count) {
+    std::fprintf(stderr,
+                 "meshvid: warning: %s: its groups hold %u frames, its header promises %u (the "
+                 "file is damaged)\n",
+                 path.c_str(), info.frame_count, info.declared_frame_count);
+  }
+}
+
 void WarnIfPartial(const std::string& spec) {
   if (!spec.ends_with(".mvid")) return;
   StatusOr<ContainerReader> reader = ContainerReader::OpenFile(spec);
   if (!reader.ok()) return;  // the command's own opening reports it
-  const std::uint64_t promised = reader->header().frame_count;
-  const std::uint64_t readable = reader->frame_count();
-  if (promised == 0 || readable == promised) return;
-  if (readable < promised) {
-    std::fprintf(stderr,
-                 "meshvid: warning: %s: partial file: only %llu of the %llu frames its header "
-                 "promises are readable; reading frames 0..%llu\n",
-                 spec.c_str(), static_cast<unsigned long long>(readable),
-                 static_cast<unsigned long long>(promised),
-                 static_cast<unsigned long long>(readable == 0 ? 0 : readable - 1));
-  } else {
-    std::fprintf(stderr,
-                 "meshvid: warning: %s: its groups hold %llu frames, its header promises %llu "
-                 "(the file is damaged)\n",
-                 spec.c_str(), static_cast<unsigned long long>(readable),
-                 static_cast<unsigned long long>(promised));
-  }
+  MvidInfo counts;
+  counts.frame_count = static_cast<std::uint32_t>(reader->frame_count());
+  counts.declared_frame_count = reader->header().frame_count;
+  WarnIfPartial(spec, counts);
 }
 
 }  // namespace meshvid::cli

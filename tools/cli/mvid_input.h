@@ -7,13 +7,19 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "codec/dec/mvid_decoder.h"
+
 namespace meshvid::cli {
 
 /// Adds the --allow-partial flag, with the same help in every command.
 void AddAllowPartialFlag(CLI::App* cmd, bool* allow_partial);
 
-/// If `spec` names a .mvid whose header promises more frames than are readable (or fewer
-/// than its groups hold), prints a warning naming the file and the counts on stderr.
+/// If the .mvid `path`, opened as `info`, is partial (or its groups hold more frames than its
+/// header promises), prints a warning naming the file and the counts on stderr.
+void WarnIfPartial(const std::string& path, const MvidInfo& info);
+
+/// The same for an input a command opened through another interface (eval's and render's
+/// sources): if `spec` names a .mvid, its counts are read from its container.
 void WarnIfPartial(const std::string& spec);
 
 }  // namespace meshvid::cli

@@ -188,6 +188,26 @@ TEST(BenchCliTest, BaselineCodesEveryFrameAtEverySetting) {
     EXPECT_TRUE(std::isfinite(figures->frame_d1_psnr[t]));
   }
   EXPECT_TRUE(std::isfinite(figures->d1_psnr_mean_of_frames));
+
+  // Decimated to a vertex budget, as a per-frame player streams it: fewer vertices, fewer bytes.
+  run = testing::RunMeshvid("bench-baseline \"" + cap + "/manifest.json\" -o \"" +
+                                dir.File("small") + "\" --decimate 300 --bits 12 --json \"" +
+                                dir.File("small.json") + "\" -q",
+                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto small = ParseBaselineSummary(testing::ReadFile(dir.File("small.json")), "small.json");
+  ASSERT_TRUE(small.ok()) << small.status().ToString();
+  ASSERT_EQ(small->settings.size(), 1u);
+  EXPECT_EQ(small->settings[0].target_vertices, 300u);
+  EXPECT_LE(small->settings[0].vertices, 300);
+  EXPECT_GT(small->settings[0].vertices, 200);
+  EXPECT_LT(small->settings[0].bytes_total, summary->settings[1].bytes_total);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.File("small/v300-b12/f0001.ply")));
+  run = testing::RunMeshvid(
+      "bench-baseline \"" + cap + "/manifest.json\" -o \"" + dir.File("bad") + "\" --decimate 2 -q",
+      dir);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--decimate"), std::string::npos) << run.err;
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ if [ "$cmd" = info ]; then
   echo "{\"levels\": 1, \"frames\": 2, \"bytes\": {\"file\": $((q * 100))}}"
   exit 0
 fi
-out=; json=; summary=; quality=0; level=0; test=; bits=
+out=; json=; summary=; quality=0; level=0; test=; bits=; decimate=0
 while [ $# -gt 0 ]; do
   case "$1" in
     -o) out=$2; shift ;;
@@ -40,6 +40,7 @@ while [ $# -gt 0 ]; do
     --level) level=$2; shift ;;
     --test) test=$2; shift ;;
     --bits) bits=$2; shift ;;
+    --decimate) decimate=$2; shift ;;
     --ref|--codec|--views|--layout|--frames|--samples|--azimuth) shift ;;
     -*) ;;
   esac
@@ -52,12 +53,17 @@ case $cmd in
            "frames": [["f0_v0.ply"], ["f1_v0.ply"]]}' > "$out/manifest.json" ;;
   bench-baseline)
     settings=
-    for b in $(echo "$bits" | tr ',' ' '); do
-      mkdir -p "$out/b$b" && touch "$out/b$b/f0000.ply"
-      [ -n "$settings" ] && settings="$settings,"
-      settings="$settings{\"position_bits\": $b, \"bytes_total\": $((b * 1000)),
-        \"encode_seconds\": 0.5, \"decode_seconds\": 0.1, \"vertices\": 100,
-        \"triangles\": 200, \"pattern\": \"$out/b$b/f{frame:04}.ply\"}"
+    for n in $(echo "$decimate" | tr ',' ' '); do
+      for b in $(echo "$bits" | tr ',' ' '); do
+        dir=b$b; vertices=100; bytes=$((b * 1000))
+        if [ "$n" != 0 ]; then dir=v$n-b$b; vertices=$n; bytes=$((b * n)); fi
+        mkdir -p "$out/$dir" && touch "$out/$dir/f0000.ply"
+        [ -n "$settings" ] && settings="$settings,"
+        settings="$settings{\"position_bits\": $b, \"target_vertices\": $n,
+          \"bytes_total\": $bytes, \"encode_seconds\": 0.5, \"decode_seconds\": 0.1,
+          \"vertices\": $vertices, \"triangles\": 200,
+          \"pattern\": \"$out/$dir/f{frame:04}.ply\"}"
+      done
     done
     echo "{\"frames\": 2, \"frame_rate\": 50, \"load_seconds\": 0.5, \"fuse_seconds\": 1.0,
            \"settings\": [$settings]}" > "$summary" ;;
@@ -71,7 +77,7 @@ case $cmd in
   eval)
     case "$test" in
       *.mvid) psnr=$((30 + $(cat "$test") / 10 + level)); last=0.002 ;;
-      *) psnr=$(echo "$test" | sed 's|.*/b\([0-9]*\)/.*|\1|'); psnr=$((psnr * 3)); last=0.001 ;;
+      *) psnr=$(echo "$test" | sed 's|.*b\([0-9]*\)/f.*|\1|'); psnr=$((psnr * 3)); last=0.001 ;;
     esac
     echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\",
            \"d1_psnr_mean_of_frames\": $((psnr + 2)), \"d2_psnr_mean_of_frames\": 100,
@@ -100,6 +106,7 @@ struct FakeBench {
     options.codecs = {"hevc"};
     options.qualities = {40, 66, 80};
     options.position_bits = {10, 14};
+    options.decimated_bits = {};  // its own test turns it on
     options.eval_samples = 1000;
     options.results_dir = dir.File("results");
     options.work_dir = dir.File("work");
@@ -203,6 +210,53 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   records = RunBench(bench.options, bench.events);
   ASSERT_TRUE(records.ok());
   EXPECT_GT(bench.Calls().size(), after.size() + 10);
+}
+
+TEST(BenchRunnerTest, DecimatedBaselineIsSizedByTheDefaultPointAndGetsItsOwnBdRates) {
+  FakeBench bench;
+  bench.options.decimated_bits = {8, 12};
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  BenchRecord r = (*records)[0];
+  // The default point (HEVC q40 at its finest level) decodes 1000 vertices a frame.
+  std::string decimate_call;
+  for (const std::string& call : bench.Calls()) {
+    if (call.find("--decimate") != std::string::npos) decimate_call = call;
+  }
+  EXPECT_NE(decimate_call.find("--decimate 500,1000,2000 --bits 8,12"), std::string::npos)
+      << decimate_call;
+  for (double multiple : kDecimatedMultiples) {
+    for (int bits : {8, 12}) {
+      const BenchPoint* p = FindPoint(r, kMethodDecimated, DecimatedCodecName(multiple), bits, -1);
+      ASSERT_NE(p, nullptr) << multiple << "x " << bits;
+      EXPECT_TRUE(p->ok) << p->error;
+      EXPECT_DOUBLE_EQ(p->vertices, 1000 * multiple);
+      EXPECT_DOUBLE_EQ(p->bytes_per_frame, bits * 1000 * multiple / 2);
+      EXPECT_DOUBLE_EQ(p->d1_psnr, 3 * bits);
+      const BenchEncode* e = FindEncode(r, kMethodDecimated, DecimatedCodecName(multiple), bits);
+      ASSERT_NE(e, nullptr);
+      EXPECT_DOUBLE_EQ(e->target_vertices, 1000 * multiple);
+    }
+  }
+  // BD-rates of each meshvid curve (HEVC levels 0 and 1) against the full baseline, then
+  // against each decimated curve.
+  std::vector<std::string> references;
+  for (const BdRateEntry& b : r.bd_rates) {
+    if (b.level == 1) references.push_back(b.reference);
+  }
+  EXPECT_EQ(references, (std::vector<std::string>{"baseline", "decimated draco 0.5x",
+                                                  "decimated draco 1x", "decimated draco 2x"}));
+  // The decoded frames are removed once measured; the report names the decimated points.
+  EXPECT_FALSE(std::filesystem::exists(bench.options.work_dir + "/fake-3-arc/decimated/v1000-b8"));
+  const std::string md = GenerateResultsMarkdown({r}, ReportOptions{});
+  EXPECT_NE(md.find("| decimated | DRACO 1X | 8 bits, 1000 vertices |"), std::string::npos);
+  EXPECT_NE(md.find("| decimated draco 1x | HEVC | 1 |"), std::string::npos);
+
+  // Again: nothing is run again.
+  const std::size_t calls = bench.Calls().size();
+  records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok());
+  EXPECT_EQ(bench.Calls().size(), calls + 1);  // the encode of q66, which fails every time
 }
 
 TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {

@@ -10,6 +10,7 @@
 
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/base_mesh_encoder.h"
+#include "codec/enc/decimation.h"
 #include "format/output_file.h"
 #include "tools/io/mesh_io.h"
 
@@ -30,6 +31,11 @@ std::string FramePath(const std::string& folder, int frame, const char* extensio
 
 }  // namespace
 
+std::string BaselineSettingFolder(std::size_t target_vertices, int position_bits) {
+  const std::string bits = "b" + std::to_string(position_bits);
+  return target_vertices == 0 ? bits : "v" + std::to_string(target_vertices) + "-" + bits;
+}
+
 StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
                                       const BaselineOptions& options,
                                       const ProgressCallback& progress) {
@@ -42,22 +48,36 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
                                   ")");
     }
   }
+  for (std::size_t target : options.vertex_targets) {
+    if (target < 4) {
+      return InvalidArgumentError("a decimation target must be at least 4 vertices (got " +
+                                  std::to_string(target) + ")");
+    }
+  }
   BaselineSummary summary;
   summary.frames = capture.frame_count();
   summary.frame_rate = capture.info().frame_rate;
+  // The meshes of a frame, one per target (index 0 and no target: the full fused mesh).
+  std::vector<std::size_t> targets = options.vertex_targets;
+  if (targets.empty()) targets.push_back(0);
   std::vector<std::string> folders;
-  for (int bits : options.position_bits) {
-    BaselineSetting setting;
-    setting.position_bits = bits;
-    if (!options.out_dir.empty()) {
-      const std::string folder = options.out_dir + "/b" + std::to_string(bits);
-      std::error_code error;
-      std::filesystem::create_directories(folder, error);
-      if (error) return IoError(folder + ": cannot create: " + error.message());
-      folders.push_back(folder);
-      setting.pattern = folder + "/f{frame:04}.ply";
+  std::vector<std::size_t> mesh_of_setting;
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    for (int bits : options.position_bits) {
+      BaselineSetting setting;
+      setting.position_bits = bits;
+      setting.target_vertices = targets[t];
+      if (!options.out_dir.empty()) {
+        const std::string folder = options.out_dir + "/" + BaselineSettingFolder(targets[t], bits);
+        std::error_code error;
+        std::filesystem::create_directories(folder, error);
+        if (error) return IoError(folder + ": cannot create: " + error.message());
+        folders.push_back(folder);
+        setting.pattern = folder + "/f{frame:04}.ply";
+      }
+      summary.settings.push_back(setting);
+      mesh_of_setting.push_back(t);
     }
-    summary.settings.push_back(setting);
   }
   BaseMeshEncoding encoding;
   encoding.encoding_speed = options.draco_speed;
@@ -78,11 +98,26 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
     summary.fuse_seconds += SecondsSince(start);
     views->clear();
 
+    start = Clock::now();
+    std::vector<TriangleMesh> meshes;
+    for (std::size_t target : targets) {
+      if (target == 0 || fused->vertex_count() <= target) {
+        meshes.push_back(*fused);
+        continue;
+      }
+      DecimationOptions decimation;
+      decimation.target_vertices = target;
+      StatusOr<TriangleMesh> decimated = DecimateMesh(*fused, decimation);
+      if (!decimated.ok()) return decimated.status().WithContext(where + ": decimation");
+      meshes.push_back(std::move(*decimated));
+    }
+    summary.decimate_seconds += SecondsSince(start);
+
     for (std::size_t s = 0; s < summary.settings.size(); ++s) {
       BaselineSetting& setting = summary.settings[s];
       encoding.position_bits = setting.position_bits;
       start = Clock::now();
-      StatusOr<EncodedBaseMesh> encoded = EncodeBaseMesh(*fused, encoding);
+      StatusOr<EncodedBaseMesh> encoded = EncodeBaseMesh(meshes[mesh_of_setting[s]], encoding);
       if (!encoded.ok()) return encoded.status().WithContext(where + ": Draco");
       setting.encode_seconds += SecondsSince(start);
       setting.bytes_total += encoded->bytes.size();
@@ -119,9 +154,11 @@ std::string BaselineSummaryToJson(const BaselineSummary& summary) {
   j["frame_rate"] = summary.frame_rate;
   j["load_seconds"] = summary.load_seconds;
   j["fuse_seconds"] = summary.fuse_seconds;
+  j["decimate_seconds"] = summary.decimate_seconds;
   j["settings"] = nlohmann::json::array();
   for (const BaselineSetting& s : summary.settings) {
     j["settings"].push_back({{"position_bits", s.position_bits},
+                             {"target_vertices", s.target_vertices},
                              {"bytes_total", s.bytes_total},
                              {"encode_seconds", s.encode_seconds},
                              {"decode_seconds", s.decode_seconds},
@@ -141,9 +178,11 @@ StatusOr<BaselineSummary> ParseBaselineSummary(const std::string& text, const st
     summary.frame_rate = j.at("frame_rate").get<double>();
     summary.load_seconds = j.at("load_seconds").get<double>();
     summary.fuse_seconds = j.at("fuse_seconds").get<double>();
+    summary.decimate_seconds = j.value("decimate_seconds", 0.0);
     for (const nlohmann::json& s : j.at("settings")) {
       BaselineSetting setting;
       setting.position_bits = s.at("position_bits").get<int>();
+      setting.target_vertices = s.value("target_vertices", std::size_t{0});
       setting.bytes_total = s.at("bytes_total").get<std::size_t>();
       setting.encode_seconds = s.at("encode_seconds").get<double>();
       setting.decode_seconds = s.at("decode_seconds").get<double>();

@@ -1,7 +1,9 @@
 // The per-frame baseline meshvid is measured against: what today's volumetric-video players
 // stream. Every frame on its own: fuse its views (the same fusion the encoder uses for its
-// base mesh), code the fused mesh with Draco (edgebreaker, position quantisation at several
-// settings), decode it again. Each frame is fused once and reused for every setting.
+// base mesh), optionally decimate the fused mesh to a vertex count (players stream a mesh of
+// a budgeted size, not the full fusion), code it with Draco (edgebreaker, position
+// quantisation at several settings), decode it again. Each frame is fused once and reused for
+// every setting.
 #ifndef MESHVID_TOOLS_BENCH_BASELINE_H_
 #define MESHVID_TOOLS_BENCH_BASELINE_H_
 
@@ -20,9 +22,13 @@ namespace meshvid {
 struct BaselineOptions {
   /// Draco position quantisation settings, one coded sequence each.
   std::vector<int> position_bits = {8, 10, 12, 14};
+  /// Vertex counts each fused frame is decimated to (quadric error, the encoder's decimation),
+  /// each coded at every position_bits; empty: the full fused mesh.
+  std::vector<std::size_t> vertex_targets;
   int draco_speed = 0;  ///< Draco encoding speed 0 (smallest) .. 10
   SurfaceFusionOptions fusion;
-  /// Decoded frames are written to `out_dir`/b<bits>/f<frame:04>.ply (binary PLY) for the
+  /// Decoded frames are written to `out_dir`/<BaselineSettingFolder>/f<frame:04>.ply (binary
+  /// PLY) for the
   /// evaluator, and the Draco bitstreams beside them as f<frame:04>.drc (for
   /// DecodeDracoFrames); "" writes nothing.
   std::string out_dir;
@@ -31,6 +37,7 @@ struct BaselineOptions {
 /// One Draco setting over every frame.
 struct BaselineSetting {
   int position_bits = 0;
+  std::size_t target_vertices = 0;  ///< decimated to this many vertices; 0: full fused mesh
   std::size_t bytes_total = 0;  ///< sum of the Draco bitstreams (no container)
   double encode_seconds = 0;    ///< Draco encoding, every frame
   double decode_seconds = 0;    ///< Draco decoding (DecodeBaseMesh), every frame
@@ -45,8 +52,13 @@ struct BaselineSummary {
   double frame_rate = 0;
   double load_seconds = 0;  ///< reading the views of every frame
   double fuse_seconds = 0;  ///< FuseRangeMeshes, every frame
+  double decimate_seconds = 0;  ///< decimation to every vertex target, every frame
   std::vector<BaselineSetting> settings;
 };
+
+/// The folder of a setting's frames under BaselineOptions::out_dir: "b<bits>" for the full
+/// fused mesh, "v<target>-b<bits>" for a decimated one.
+std::string BaselineSettingFolder(std::size_t target_vertices, int position_bits);
 
 /// Runs the baseline on every frame of `capture`, reporting progress per frame ("baseline").
 /// Fails with the frame number if a frame cannot be loaded, fused or coded.
@@ -55,7 +67,7 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
                                       const ProgressCallback& progress = {});
 
 /// The summary as JSON text ({"frames", "frame_rate", "load_seconds", "fuse_seconds",
-/// "settings": [{"position_bits", "bytes_total", ...}]}).
+/// "decimate_seconds", "settings": [{"position_bits", "target_vertices", "bytes_total", ...}]}).
 std::string BaselineSummaryToJson(const BaselineSummary& summary);
 
 /// Parses BaselineSummaryToJson's output; `name` is used in messages.

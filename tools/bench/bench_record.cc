@@ -144,6 +144,7 @@ json EncodeToJson(const BenchEncode& e) {
           {"encode_fps", JsonNumber(e.encode_fps)},
           {"peak_rss_mb", JsonNumber(e.peak_rss_mb)},
           {"decode_fps", JsonNumber(e.decode_fps)},
+          {"target_vertices", JsonNumber(e.target_vertices)},
           {"command", e.command}};
 }
 
@@ -162,6 +163,7 @@ BenchEncode EncodeFromJson(const json& j) {
   e.encode_fps = JsonNumber(j, "encode_fps");
   e.peak_rss_mb = JsonNumber(j, "peak_rss_mb");
   e.decode_fps = JsonNumber(j, "decode_fps");
+  e.target_vertices = j.contains("target_vertices") ? JsonNumber(j, "target_vertices") : 0.0;
   e.command = j.value("command", "");
   return e;
 }
@@ -226,29 +228,38 @@ BenchPoint PointFromJson(const json& j) {
 
 /// Where a meshvid curve stands when its PSNR range does not overlap the baseline's: its
 /// nearest point against the baseline's nearest, in dB and in bytes per frame.
-std::string NoOverlapNote(const std::vector<RdPoint>& baseline, const std::vector<RdPoint>& test) {
+std::string NoOverlapNote(const std::vector<RdPoint>& baseline, const std::vector<RdPoint>& test,
+                          const std::string& reference) {
   const std::vector<RdPoint> ref = PrepareRdCurve(baseline);
   const std::vector<RdPoint> tst = PrepareRdCurve(test);
   if (ref.empty() || tst.empty()) return "";
   char text[200];
   if (tst.front().psnr > ref.back().psnr) {
     std::snprintf(text, sizeof(text),
-                  "; meshvid's lowest point is %.1f dB above the baseline's best, with %.3gx its "
+                  "; meshvid's lowest point is %.1f dB above the %s's best, with %.3gx its "
                   "bytes per frame",
-                  tst.front().psnr - ref.back().psnr, tst.front().rate / ref.back().rate);
+                  tst.front().psnr - ref.back().psnr, reference.c_str(),
+                  tst.front().rate / ref.back().rate);
     return text;
   }
   if (tst.back().psnr < ref.front().psnr) {
     std::snprintf(text, sizeof(text),
-                  "; meshvid's best point is %.1f dB below the baseline's lowest, with %.3gx its "
+                  "; meshvid's best point is %.1f dB below the %s's lowest, with %.3gx its "
                   "bytes per frame",
-                  ref.front().psnr - tst.back().psnr, tst.back().rate / ref.front().rate);
+                  ref.front().psnr - tst.back().psnr, reference.c_str(),
+                  tst.back().rate / ref.front().rate);
     return text;
   }
   return "";
 }
 
 }  // namespace
+
+std::string DecimatedCodecName(double multiple) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "draco %gx", multiple);
+  return text;
+}
 
 std::string BenchRecordName(const BenchRecord& record) {
   return record.sequence + "-" + record.rig;
@@ -290,7 +301,8 @@ std::string BenchRecordToJson(const BenchRecord& r) {
   for (const BenchPoint& p : r.points) j["points"].push_back(PointToJson(p));
   j["bd_rates"] = json::array();
   for (const BdRateEntry& b : r.bd_rates) {
-    j["bd_rates"].push_back({{"codec", b.codec},
+    j["bd_rates"].push_back({{"reference", b.reference},
+                             {"codec", b.codec},
                              {"level", b.level},
                              {"ok", b.ok},
                              {"psnr", b.psnr},
@@ -352,6 +364,7 @@ StatusOr<BenchRecord> ParseBenchRecord(const std::string& text, const std::strin
     for (const json& p : j.value("points", json::array())) r.points.push_back(PointFromJson(p));
     for (const json& b : j.value("bd_rates", json::array())) {
       BdRateEntry entry;
+      entry.reference = b.value("reference", std::string(kMethodBaseline));
       entry.codec = b.value("codec", "");
       entry.level = b.value("level", 0);
       entry.ok = b.value("ok", false);
@@ -475,33 +488,46 @@ double D1Psnr(const BenchPoint& point, const std::string& kind) {
 void ComputeBdRates(BenchRecord& record) {
   record.bd_rates.clear();
   const std::string kind = RecordPsnrKind(record);
-  std::vector<RdPoint> baseline;
+  // Reference curves in report order: the full baseline, then each decimated one.
+  std::vector<std::pair<std::string, std::vector<RdPoint>>> references = {{kMethodBaseline, {}}};
   std::map<std::pair<std::string, int>, std::vector<RdPoint>> curves;  // (codec, level)
   for (const BenchPoint& p : record.points) {
     if (!p.ok) continue;
+    const RdPoint point{p.bytes_per_frame, D1Psnr(p, kind)};
     if (p.method == kMethodBaseline) {
-      baseline.push_back({p.bytes_per_frame, D1Psnr(p, kind)});
+      references.front().second.push_back(point);
+    } else if (p.method == kMethodDecimated) {
+      const std::string name = std::string(kMethodDecimated) + " " + p.codec;
+      auto it = std::find_if(references.begin(), references.end(),
+                             [&](const auto& r) { return r.first == name; });
+      if (it == references.end()) it = references.insert(references.end(), {name, {}});
+      it->second.push_back(point);
     } else if (p.method == kMethodMeshvid) {
-      curves[{p.codec, p.level}].push_back({p.bytes_per_frame, D1Psnr(p, kind)});
+      curves[{p.codec, p.level}].push_back(point);
     }
   }
-  for (const auto& [key, points] : curves) {
-    // One-point configurations (the lossless FFV1 reference) have no curve.
-    if (points.size() < 2) continue;
-    BdRateEntry entry;
-    entry.codec = key.first;
-    entry.level = key.second;
-    entry.psnr = kind;
-    StatusOr<BdRateResult> result = BjontegaardDeltaRate(baseline, points);
-    if (result.ok()) {
-      entry.ok = true;
-      entry.delta = result->delta;
-      entry.psnr_low = result->psnr_low;
-      entry.psnr_high = result->psnr_high;
-    } else {
-      entry.note = result.status().message() + NoOverlapNote(baseline, points);
+  std::stable_sort(references.begin() + 1, references.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [reference, reference_points] : references) {
+    for (const auto& [key, points] : curves) {
+      // One-point configurations (the lossless FFV1 reference) have no curve.
+      if (points.size() < 2) continue;
+      BdRateEntry entry;
+      entry.reference = reference;
+      entry.codec = key.first;
+      entry.level = key.second;
+      entry.psnr = kind;
+      StatusOr<BdRateResult> result = BjontegaardDeltaRate(reference_points, points);
+      if (result.ok()) {
+        entry.ok = true;
+        entry.delta = result->delta;
+        entry.psnr_low = result->psnr_low;
+        entry.psnr_high = result->psnr_high;
+      } else {
+        entry.note = result.status().message() + NoOverlapNote(reference_points, points, reference);
+      }
+      record.bd_rates.push_back(entry);
     }
-    record.bd_rates.push_back(entry);
   }
 }
 

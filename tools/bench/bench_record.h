@@ -20,6 +20,14 @@ inline constexpr const char* kBenchRecordFormat = "meshvid-bench-record/1";
 /// Method names in records.
 inline constexpr const char* kMethodMeshvid = "meshvid";
 inline constexpr const char* kMethodBaseline = "baseline";
+/// The per-frame baseline decimated to a multiple of meshvid's decoded vertex count; its
+/// codec names the multiple ("draco 1x", "draco 2x", "draco 0.5x": DecimatedCodecName).
+inline constexpr const char* kMethodDecimated = "decimated";
+/// The multiples of meshvid's decoded vertex count the decimated baseline is run at.
+inline constexpr double kDecimatedMultiples[] = {0.5, 1.0, 2.0};
+
+/// "draco 1x" for the decimated baseline at `multiple` of meshvid's vertex count.
+std::string DecimatedCodecName(double multiple);
 
 /// Which D1 PSNR a BD-rate or RD plot uses (BdRateEntry::psnr): the mean of the per-frame
 /// PSNRs (MPEG CTC averaging, the default), or the PSNR of the mean MSE over frames (the only
@@ -41,7 +49,8 @@ struct StepCost {
 };
 
 /// One coded representation: a .mvid (method "meshvid") or one Draco setting of the
-/// baseline (method "baseline", codec "draco", quality = position bits).
+/// baseline (method "baseline", codec "draco", quality = position bits; method "decimated",
+/// codec DecimatedCodecName, quality = position bits).
 struct BenchEncode {
   std::string method;
   std::string codec;  ///< "hevc", "av1", "ffv1" or "draco"
@@ -56,6 +65,8 @@ struct BenchEncode {
   double encode_fps = 0;  ///< frames / seconds
   double peak_rss_mb = 0;
   double decode_fps = 0;  ///< baseline only: Draco decoding, frames / second
+  /// Decimated baseline only: the vertex count each fused frame was decimated to.
+  double target_vertices = 0;
   std::string command;
 };
 
@@ -95,8 +106,11 @@ struct BenchPoint {
 };
 
 /// The BD-rate of one meshvid curve (a codec decoded at one level, over its qualities)
-/// against the baseline curve.
+/// against a reference curve: the full-resolution baseline or one decimated baseline.
 struct BdRateEntry {
+  /// The reference curve: kMethodBaseline (also what a stored entry without this field was
+  /// computed against), or "decimated " + its codec ("decimated draco 1x").
+  std::string reference = kMethodBaseline;
   std::string codec;
   int level = 0;
   bool ok = false;
@@ -243,7 +257,7 @@ double D1Psnr(const BenchPoint& point, const std::string& kind);
 
 /// Recomputes record.bd_rates: for every meshvid codec with >= 2 qualities and every level,
 /// the BD-rate (RecordPsnrKind's D1 PSNR, bytes per frame, piecewise-cubic) against the
-/// baseline's points.
+/// baseline's points, then against each decimated baseline's (one curve per multiple).
 void ComputeBdRates(BenchRecord& record);
 
 }  // namespace meshvid

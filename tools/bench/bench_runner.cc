@@ -102,7 +102,8 @@ class Runner {
       if (error) return IoError(folder + ": cannot create: " + error.message());
     }
     const long per_rig = 1 + 1 + static_cast<long>(options_.position_bits.size()) +
-                         static_cast<long>(Configurations().size()) * (1 + kAssumedLevels + 1);
+                         static_cast<long>(Configurations().size()) * (1 + kAssumedLevels + 1) +
+                         DecimatedSteps();
     total_ = per_rig * static_cast<long>(options_.sequences.size() * options_.rigs.size());
     machine_ = ReadMachineInfo();
     std::vector<BenchRecord> records;
@@ -128,6 +129,12 @@ class Runner {
     }
     if (options_.lossless_quality >= 0) configs.emplace_back("ffv1", options_.lossless_quality);
     return configs;
+  }
+
+  /// The decimated baseline's steps: its run, then one point per multiple and bits.
+  long DecimatedSteps() const {
+    if (options_.decimated_bits.empty()) return 0;
+    return 1 + static_cast<long>(std::size(kDecimatedMultiples) * options_.decimated_bits.size());
   }
 
   /// Counts `steps` finished steps; false if the caller asked to stop.
@@ -171,6 +178,15 @@ class Runner {
   Status RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchRecord* out);
   Status Simulate(const BenchSequence& sequence, const BenchRig& rig, BenchRecord& record);
   Status Baseline(BenchRecord& record);
+  /// The per-frame baseline decimated to kDecimatedMultiples of the default meshvid point's
+  /// decoded vertex count, at options_.decimated_bits (after the meshvid encodes).
+  Status Decimated(BenchRecord& record);
+  /// Records the encodes and points of `summary`'s settings (method `method`, codecs[i] for
+  /// setting i): Draco decoding timed in a child, every setting evaluated; removes the
+  /// decoded frames under `out` once every point is measured (unless keep_work).
+  Status DracoPoints(BenchRecord& record, const std::string& method,
+                     const std::vector<std::string>& codecs, const BaselineSummary& summary,
+                     const std::string& out, const std::string& command, const StepCost& cost);
   Status Meshvid(BenchRecord& record, const std::string& codec, int quality);
   /// Runs `meshvid eval` of `test` (at `level` if >= 0) into `point`; false if it failed.
   bool Evaluate(const BenchRecord& record, const std::string& test, int level,
@@ -243,7 +259,8 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   if (!record.simulate_ok) {
     // Nothing else can run on this sequence and rig; skip its planned steps.
     const long skipped = static_cast<long>(options_.position_bits.size()) + 1 +
-                         static_cast<long>(Configurations().size()) * (kAssumedLevels + 2);
+                         static_cast<long>(Configurations().size()) * (kAssumedLevels + 2) +
+                         DecimatedSteps();
     if (!Advance(skipped)) return CancelledError("bench cancelled");
     return Status::Ok();
   }
@@ -251,6 +268,7 @@ Status Runner::RunOne(const BenchSequence& sequence, const BenchRig& rig, BenchR
   for (const auto& [codec, quality] : Configurations()) {
     MESHVID_RETURN_IF_ERROR(Meshvid(record, codec, quality));
   }
+  MESHVID_RETURN_IF_ERROR(Decimated(record));
   MESHVID_RETURN_IF_ERROR(Save(record));
   Log(label_ + " " + DescribeDivergence(record.divergence));
   if (options_.draw_stills) Still(record);
@@ -348,8 +366,8 @@ bool Runner::Evaluate(const BenchRecord& record, const std::string& test, int le
 /// "hevc q40 L2: 1.23 kB/frame, 0.25 Mbit/s, D1 68.21 dB (mean of frames; 67.90 of the mean
 /// MSE), coverage 97.1%, decode 450 frames/s".
 std::string DescribePoint(const BenchPoint& p) {
-  std::string text = p.codec + " " + (p.method == kMethodBaseline ? "b" : "q") +
-                     std::to_string(p.quality) +
+  std::string text = (p.method == kMethodDecimated ? "decimated " : "") + p.codec + " " +
+                     (p.method == kMethodMeshvid ? "q" : "b") + std::to_string(p.quality) +
                      (p.level >= 0 ? " L" + std::to_string(p.level) : std::string());
   if (!p.ok) return text + " FAILED: " + p.error;
   return text +
@@ -420,47 +438,64 @@ Status Runner::Baseline(BenchRecord& record) {
     return Advance(steps - 1) ? Status::Ok() : CancelledError("bench cancelled");
   }
   record.baseline_fuse_seconds = summary->load_seconds + summary->fuse_seconds;
+  std::vector<std::string> codecs(summary->settings.size(), "draco");
+  return DracoPoints(record, kMethodBaseline, codecs, *summary, out, record.baseline_command,
+                     record.baseline_cost);
+}
+
+Status Runner::DracoPoints(BenchRecord& record, const std::string& method,
+                           const std::vector<std::string>& codecs, const BaselineSummary& summary,
+                           const std::string& out, const std::string& command,
+                           const StepCost& cost) {
   bool evaluated_all = true;
-  for (const BaselineSetting& s : summary->settings) {
-    const int frames = std::max(1, summary->frames);
+  for (std::size_t i = 0; i < summary.settings.size(); ++i) {
+    const BaselineSetting& s = summary.settings[i];
+    const std::string& codec = codecs[i];
+    const std::string folder =
+        out + "/" + BaselineSettingFolder(s.target_vertices, s.position_bits);
+    const int frames = std::max(1, summary.frames);
     BenchEncode encode;
-    encode.method = kMethodBaseline;
-    encode.codec = "draco";
+    encode.method = method;
+    encode.codec = codec;
     encode.quality = s.position_bits;
     encode.ok = true;
     encode.file = s.pattern;
-    encode.frames = summary->frames;
+    encode.frames = summary.frames;
     encode.bytes_total = static_cast<double>(s.bytes_total);
-    encode.seconds = summary->load_seconds + summary->fuse_seconds + s.encode_seconds;
+    // Every setting's frames were fused (and decimated) once for all of them: each counts
+    // the whole, as a player's encoder running that setting alone would spend it.
+    encode.seconds =
+        summary.load_seconds + summary.fuse_seconds + summary.decimate_seconds + s.encode_seconds;
     encode.encode_fps = encode.seconds > 0 ? frames / encode.seconds : 0;
     encode.decode_fps = s.decode_seconds > 0 ? frames / s.decode_seconds : 0;
-    encode.peak_rss_mb = record.baseline_cost.peak_rss_mb;
-    encode.command = record.baseline_command;
+    encode.peak_rss_mb = cost.peak_rss_mb;
+    encode.target_vertices = static_cast<double>(s.target_vertices);
+    encode.command = command;
     UpsertEncode(record, encode);
 
-    BenchPoint* previous = FindPoint(record, kMethodBaseline, "draco", s.position_bits, -1);
+    BenchPoint* previous = FindPoint(record, method, codec, s.position_bits, -1);
     if (options_.resume && Finished(previous)) {
       if (!Advance()) return CancelledError("bench cancelled");
       continue;
     }
     BenchPoint point;
-    point.method = kMethodBaseline;
-    point.codec = "draco";
+    point.method = method;
+    point.codec = codec;
     point.quality = s.position_bits;
     point.level = -1;
-    point.frames = summary->frames;
+    point.frames = summary.frames;
     point.bytes_per_frame = encode.bytes_total / frames;
     point.mbit_per_s = point.bytes_per_frame * 8 * record.frame_rate / 1e6;
     point.encode_fps = encode.encode_fps;
-    point.encode_peak_mb = record.baseline_cost.peak_rss_mb;
+    point.encode_peak_mb = cost.peak_rss_mb;
     point.vertices = s.vertices;
-    point.commands = {record.baseline_command};
+    point.commands = {command};
     // The player's side in a process of its own: Draco decoding of every frame's bitstream.
-    const std::string stem = "draco-b" + std::to_string(s.position_bits);
+    const std::string stem = "draco-" + (method == kMethodBaseline ? std::string() : method + "-") +
+                             BaselineSettingFolder(s.target_vertices, s.position_bits);
     const std::string decode_json = dir_ + "/logs/" + stem + ".decode.json";
-    const std::vector<std::string> decode_args = {"bench-draco-decode",
-                                                  out + "/b" + std::to_string(s.position_bits),
-                                                  "--json", decode_json, "-q"};
+    const std::vector<std::string> decode_args = {"bench-draco-decode", folder, "--json",
+                                                  decode_json, "-q"};
     point.commands.push_back(Command(decode_args));
     const StatusOr<ChildRun> decode = Child(decode_args, stem + ".decode");
     StatusOr<json> timing = decode.ok() && decode->ok()
@@ -481,12 +516,93 @@ Status Runner::Baseline(BenchRecord& record) {
   }
   if (evaluated_all && !options_.keep_work) {
     // The decoded frames are large (every frame at every setting); the record keeps the numbers.
-    for (const BaselineSetting& s : summary->settings) {
+    for (const BaselineSetting& s : summary.settings) {
       std::error_code ignored;
-      fs::remove_all(out + "/b" + std::to_string(s.position_bits), ignored);
+      fs::remove_all(out + "/" + BaselineSettingFolder(s.target_vertices, s.position_bits),
+                     ignored);
     }
   }
   return Status::Ok();
+}
+
+Status Runner::Decimated(BenchRecord& record) {
+  const long steps = DecimatedSteps();
+  if (steps == 0) return Status::Ok();
+  const BenchPoint* reference = FindDefaultPoint(record);
+  if (reference == nullptr || !reference->ok || !(reference->vertices >= 4)) {
+    Log(label_ +
+        ": no decimated baseline (the default meshvid point, whose decoded vertex "
+        "count it is sized by, was not measured)");
+    return Advance(steps) ? Status::Ok() : CancelledError("bench cancelled");
+  }
+  // The targets, and the codec name of each.
+  std::vector<std::size_t> targets;
+  std::map<std::size_t, std::string> codec_of_target;
+  for (double multiple : kDecimatedMultiples) {
+    const auto target = static_cast<std::size_t>(std::lround(multiple * reference->vertices));
+    targets.push_back(target);
+    codec_of_target[target] = DecimatedCodecName(multiple);
+  }
+  bool all_done = true;
+  for (double multiple : kDecimatedMultiples) {
+    for (int bits : options_.decimated_bits) {
+      const BenchPoint* p =
+          FindPoint(record, kMethodDecimated, DecimatedCodecName(multiple), bits, -1);
+      const BenchEncode* e =
+          FindEncode(record, kMethodDecimated, DecimatedCodecName(multiple), bits);
+      all_done = all_done && Finished(p) && e != nullptr &&
+                 e->target_vertices == std::lround(multiple * reference->vertices);
+    }
+  }
+  if (options_.resume && all_done) {
+    return Advance(steps) ? Status::Ok() : CancelledError("bench cancelled");
+  }
+  // The targets follow meshvid's file: points of other targets are measured again.
+  std::erase_if(record.points, [](const BenchPoint& p) { return p.method == kMethodDecimated; });
+  std::erase_if(record.encodes, [](const BenchEncode& e) { return e.method == kMethodDecimated; });
+
+  const std::string out = dir_ + "/decimated";
+  const std::string summary_path = out + "/summary.json";
+  std::string target_list;
+  for (std::size_t t : targets) target_list += (target_list.empty() ? "" : ",") + std::to_string(t);
+  const std::vector<std::string> args = {
+      "bench-baseline", record.capture, "-o",     out,
+      "--decimate",     target_list,    "--bits", JoinInts(options_.decimated_bits),
+      "--summary-json", summary_path,   "-q"};
+  const std::string command = Command(args);
+  Log(label_ + ": decimated baseline (fusion, decimation to " + target_list +
+      " vertices, Draco per frame) running");
+  std::error_code ignored;
+  fs::remove(summary_path, ignored);
+  const StatusOr<ChildRun> run = Child(args, "decimated");
+  StatusOr<BaselineSummary> summary = InternalError(ChildFailure(run));
+  if (run.ok() && run->ok()) {
+    StatusOr<std::string> text = ReadTextFile(summary_path);
+    summary = text.ok() ? ParseBaselineSummary(*text, summary_path)
+                        : StatusOr<BaselineSummary>(text.status());
+  }
+  if (!Advance()) return CancelledError("bench cancelled");
+  if (!summary.ok()) {
+    Log(label_ + ": decimated baseline FAILED: " + summary.status().message());
+    for (double multiple : kDecimatedMultiples) {
+      for (int bits : options_.decimated_bits) {
+        BenchPoint point;
+        point.method = kMethodDecimated;
+        point.codec = DecimatedCodecName(multiple);
+        point.quality = bits;
+        point.error = "decimated baseline: " + summary.status().message();
+        point.commands = {command};
+        UpsertPoint(record, point);
+      }
+    }
+    MESHVID_RETURN_IF_ERROR(Save(record));
+    return Advance(steps - 1) ? Status::Ok() : CancelledError("bench cancelled");
+  }
+  std::vector<std::string> codecs;
+  for (const BaselineSetting& s : summary->settings)
+    codecs.push_back(codec_of_target[s.target_vertices]);
+  const StepCost cost{run->wall_seconds, run->cpu_seconds, run->peak_rss_mb};
+  return DracoPoints(record, kMethodDecimated, codecs, *summary, out, command, cost);
 }
 
 Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int quality) {

@@ -1,7 +1,8 @@
 // `meshvid bench` as a library: for each ground-truth sequence and rig, simulate a capture,
 // encode it with meshvid at several rate points per codec, decode and evaluate every level,
-// run the per-frame baseline (fusion + Draco) on the same capture and evaluate it the same
-// way, and record everything (bench_record.h). Every step runs as a child process of the
+// run the per-frame baseline (fusion + Draco) on the same capture, in full and decimated to
+// meshvid's decoded vertex count (and 2x and 1/2 of it), evaluate it the same way, and record
+// everything (bench_record.h). Every step runs as a child process of the
 // `meshvid` executable, measured for wall time and peak memory; a failing step is recorded
 // and the run goes on. Finished steps found in an existing record are not run again: points
 // of an older record without the per-frame figures get them from their eval JSON in the work
@@ -47,6 +48,9 @@ struct BenchOptions {
   /// FFV1 as the lossless reference: one point at this quality; < 0: none.
   int lossless_quality = 100;
   std::vector<int> position_bits = {8, 10, 12, 14};  ///< baseline Draco settings
+  /// Draco settings of the decimated baseline (each fused frame decimated to 1/2, 1 and 2
+  /// times the default meshvid point's decoded vertex count); empty: no decimated baseline.
+  std::vector<int> decimated_bits = {8, 10, 12};
   int frames = 0;                                    ///< capture frames per sequence (0: all)
   std::size_t eval_samples = 200000;                 ///< `meshvid eval --samples`
   std::string results_dir = "bench/results";         ///< records <sequence>-<rig>.json

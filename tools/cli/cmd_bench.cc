@@ -4,6 +4,7 @@
 // the bench runs as child processes.
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -36,6 +37,8 @@ struct BenchArguments {
   std::string codecs = "hevc,av1";
   std::string qualities = "20,40,60,80";
   std::string bits = "8,10,12,14";
+  std::string decimated_bits = "8,10,12";
+  bool no_decimated = false;
   std::string encode_args;
   int lossless_quality = 100;
   bool no_lossless = false;
@@ -64,6 +67,11 @@ std::string CommandLine(const BenchArguments& a, const BenchOptions& o) {
   if (a.codecs != "hevc,av1") argv.insert(argv.end(), {"--codecs", a.codecs});
   if (a.qualities != "20,40,60,80") argv.insert(argv.end(), {"--qualities", a.qualities});
   if (a.bits != "8,10,12,14") argv.insert(argv.end(), {"--bits", a.bits});
+  if (a.no_decimated) {
+    argv.push_back("--no-decimated");
+  } else if (a.decimated_bits != "8,10,12") {
+    argv.insert(argv.end(), {"--decimated-bits", a.decimated_bits});
+  }
   if (o.lossless_quality < 0) argv.push_back("--no-lossless");
   if (!a.encode_args.empty()) argv.insert(argv.end(), {"--encode-args", a.encode_args});
   return ShellQuoteCommand(argv);
@@ -78,6 +86,11 @@ Status BuildOptions(const BenchArguments& a, BenchOptions* o) {
   MESHVID_ASSIGN_OR_RETURN(o->rigs, ParseRigList(a.rigs));
   MESHVID_ASSIGN_OR_RETURN(o->qualities, ParseIntList(a.qualities, 0, 100, "--qualities"));
   MESHVID_ASSIGN_OR_RETURN(o->position_bits, ParseIntList(a.bits, 1, 30, "--bits"));
+  o->decimated_bits.clear();
+  if (!a.no_decimated) {
+    MESHVID_ASSIGN_OR_RETURN(o->decimated_bits,
+                             ParseIntList(a.decimated_bits, 1, 30, "--decimated-bits"));
+  }
   o->codecs.clear();
   std::size_t start = 0;
   while (start <= a.codecs.size()) {
@@ -220,6 +233,7 @@ struct BaselineArguments {
   std::string capture;
   std::string out;
   std::string bits = "8,10,12,14";
+  std::string decimate;
   std::string summary_json;
   int draco_speed = 0;
   bool quiet = false;
@@ -233,6 +247,15 @@ int RunBaselineCommand(const BaselineArguments& args) {
     return 2;
   }
   options.position_bits = *bits;
+  if (!args.decimate.empty()) {
+    StatusOr<std::vector<int>> targets =
+        ParseIntList(args.decimate, 4, std::numeric_limits<int>::max(), "--decimate");
+    if (!targets.ok()) {
+      ReportError(targets.status());
+      return 2;
+    }
+    options.vertex_targets.assign(targets->begin(), targets->end());
+  }
   options.draco_speed = args.draco_speed;
   options.out_dir = args.out;
   StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.capture);
@@ -246,13 +269,18 @@ int RunBaselineCommand(const BaselineArguments& args) {
     if (!written.ok()) return ReportError(written);
   }
   if (!args.quiet) {
-    std::fprintf(stderr, "Baseline on %d frames: reading %.2f s, fusion %.2f s\n", summary->frames,
-                 summary->load_seconds, summary->fuse_seconds);
+    std::fprintf(
+        stderr, "Baseline on %d frames: reading %.2f s, fusion %.2f s, decimation %.2f s\n",
+        summary->frames, summary->load_seconds, summary->fuse_seconds, summary->decimate_seconds);
     for (const BaselineSetting& s : summary->settings) {
+      const std::string mesh = s.target_vertices == 0
+                                   ? std::string("full")
+                                   : "to " + std::to_string(s.target_vertices) + " vertices";
       std::fprintf(stderr,
-                   "  %2d bits: %.0f bytes/frame, Draco encode %.3f s, decode %.3f s, %.0f "
+                   "  %s, %2d bits: %.0f bytes/frame, Draco encode %.3f s, decode %.3f s, %.0f "
                    "vertices/frame -> %s\n",
-                   s.position_bits, summary->frames ? double(s.bytes_total) / summary->frames : 0.0,
+                   mesh.c_str(), s.position_bits,
+                   summary->frames ? double(s.bytes_total) / summary->frames : 0.0,
                    s.encode_seconds, s.decode_seconds, s.vertices, s.pattern.c_str());
     }
   }
@@ -292,10 +320,11 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       "with Draco, as volumetric-video players stream) on simulated captures of each\n"
       "ground-truth sequence with 3 views on an arc and 6 on a ring: meshvid encode at\n"
       "several qualities per codec (HEVC, AV1; FFV1 lossless), decoded and evaluated at every\n"
-      "level; the baseline at several Draco quantisations, evaluated the same way. Records\n"
-      "bytes/frame, Mbit/s, D1/D2 PSNR, accuracy, completeness, coverage, encode/decode\n"
-      "frames/s and peak memory per point in OUT/<sequence>-<rig>.json, BD-rates (D1) against\n"
-      "the baseline, RD plots (gnuplot) and RESULTS.md beside OUT. Every step is a child\n"
+      "level; the baseline at several Draco quantisations, in full and decimated to 1/2, 1 and\n"
+      "2 times meshvid's decoded vertex count, evaluated the same way. Records bytes/frame,\n"
+      "Mbit/s, D1/D2 PSNR, accuracy, completeness, coverage, encode/decode frames/s and peak\n"
+      "memory per point in OUT/<sequence>-<rig>.json, BD-rates (D1) against each baseline\n"
+      "curve, RD plots (gnuplot) and RESULTS.md beside OUT. Every step is a child\n"
       "process of this program; a failing step is recorded and the run goes on; running the\n"
       "same command again resumes (finished steps are kept). A full run takes hours;\n"
       "--quick takes minutes.");
@@ -321,6 +350,12 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--qualities", args->qualities, "meshvid encode --quality values (0..100)")
       ->capture_default_str();
   cmd->add_option("--bits", args->bits, "Baseline Draco position bits")->capture_default_str();
+  cmd->add_option("--decimated-bits", args->decimated_bits,
+                  "Draco position bits of the decimated baseline: each frame's fused mesh "
+                  "decimated to 1/2, 1 and 2 times the vertices meshvid decodes at its default "
+                  "setting, as per-frame players stream a mesh of a budgeted size")
+      ->capture_default_str();
+  cmd->add_flag("--no-decimated", args->no_decimated, "Do not run the decimated baseline");
   cmd->add_option("--lossless-quality", args->lossless_quality,
                   "Quality of the one FFV1 (lossless reference) point")
       ->capture_default_str();
@@ -350,13 +385,18 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   CLI::App* base = app.add_subcommand(
       "bench-baseline",
       "The per-frame baseline step of meshvid bench: fuse each frame's views, code the fused\n"
-      "mesh with Draco (edgebreaker) at each --bits, decode it and write the decoded frames to\n"
-      "OUT/b<bits>/f<frame:04>.ply.");
+      "mesh (or, with --decimate, the fused mesh decimated to each vertex count) with Draco\n"
+      "(edgebreaker) at each --bits, decode it and write the decoded frames to\n"
+      "OUT/b<bits>/f<frame:04>.ply (decimated: OUT/v<vertices>-b<bits>/...).");
   base->group("");  // hidden: meshvid bench runs it
   base->add_option("CAPTURE", baseline->capture, "The capture (manifest.json, pattern, .conf)")
       ->required();
   base->add_option("-o,--out", baseline->out, "Output folder")->required();
   base->add_option("--bits", baseline->bits, "Draco position bits")->capture_default_str();
+  base->add_option("--decimate", baseline->decimate,
+                   "Decimate each fused frame to each of these vertex counts (N,N,...) before "
+                   "coding; without it the full fused mesh is coded")
+      ->type_name("N,...");
   base->add_option("--draco-speed", baseline->draco_speed, "Draco speed 0 (smallest) .. 10")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();

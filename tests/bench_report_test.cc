@@ -75,7 +75,8 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   // How both averages are measured, and which one BD-rate uses.
   EXPECT_TRUE(Contains(md, "**mean of frames**, the mean of the per-frame PSNRs"));
   EXPECT_TRUE(Contains(md, "**mean MSE**, the PSNR of the mean MSE over frames"));
-  EXPECT_TRUE(Contains(md, "against the baseline, on D1 PSNR, mean of frames"));
+  EXPECT_TRUE(Contains(
+      md, "against the baseline and against each decimated curve, on D1 PSNR, mean of frames"));
   EXPECT_FALSE(Contains(md, "This record predates"));
   EXPECT_TRUE(Contains(md, "- av1 q40: encode: exit code 1: out of cheese"));
   EXPECT_TRUE(

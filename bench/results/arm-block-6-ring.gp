@@ -15,18 +15,24 @@ $s0 << EOD
 68.9138 52.5383
 EOD
 $s1 << EOD
+7.89689 52.5701
+11.7725 52.5305
+17.8726 52.5246
+EOD
+$s2 << EOD
 0.746367 52.7790
 2.28689 52.4526
 EOD
-$s2 << EOD
+$s3 << EOD
 0.746367 52.8317
 2.28689 52.5139
 EOD
-$s3 << EOD
+$s4 << EOD
 0.746367 52.8877
 2.28689 52.5610
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

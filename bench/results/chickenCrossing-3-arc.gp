@@ -15,18 +15,24 @@ $s0 << EOD
 99.3843 35.0310
 EOD
 $s1 << EOD
+11.6723 35.0626
+17.4436 35.0323
+26.2735 35.0296
+EOD
+$s2 << EOD
 0.82954 34.5916
 1.89956 34.5999
 EOD
-$s2 << EOD
+$s3 << EOD
 0.82954 34.6067
 1.89956 34.6065
 EOD
-$s3 << EOD
+$s4 << EOD
 0.82954 34.6100
 1.89956 34.6163
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -15,18 +15,24 @@ $s0 << EOD
 171.233 44.8019
 EOD
 $s1 << EOD
+19.1631 44.8914
+29.0383 44.8115
+43.776 44.8007
+EOD
+$s2 << EOD
 1.33358 44.5887
 3.83296 44.5597
 EOD
-$s2 << EOD
+$s3 << EOD
 1.33358 44.6095
 3.83296 44.5865
 EOD
-$s3 << EOD
+$s4 << EOD
 1.33358 44.6321
 3.83296 44.6174
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

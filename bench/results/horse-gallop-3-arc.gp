@@ -15,18 +15,24 @@ $s0 << EOD
 100.891 35.1902
 EOD
 $s1 << EOD
+6.53374 35.2196
+9.6505 35.1879
+14.021 35.1858
+EOD
+$s2 << EOD
 1.61322 35.1728
 3.02539 35.1786
 EOD
-$s2 << EOD
+$s3 << EOD
 1.61322 35.1759
 3.02539 35.1845
 EOD
-$s3 << EOD
+$s4 << EOD
 1.61322 35.1861
 3.02539 35.1895
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

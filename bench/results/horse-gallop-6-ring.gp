@@ -15,18 +15,24 @@ $s0 << EOD
 143.024 55.0420
 EOD
 $s1 << EOD
+8.91878 54.9048
+13.1904 54.9993
+19.0823 55.0040
+EOD
+$s2 << EOD
 1.69958 54.7916
 3.86325 55.0236
 EOD
-$s2 << EOD
+$s3 << EOD
 1.69958 54.9174
 3.86325 55.1354
 EOD
-$s3 << EOD
+$s4 << EOD
 1.69958 55.0168
 3.86325 55.2113
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -15,18 +15,24 @@ $s0 << EOD
 68.3818 38.7496
 EOD
 $s1 << EOD
+5.94115 38.7808
+8.60554 38.7483
+12.8068 38.7429
+EOD
+$s2 << EOD
 0.848157 38.5614
 2.03212 38.6350
 EOD
-$s2 << EOD
+$s3 << EOD
 0.848157 38.5640
 2.03212 38.6441
 EOD
-$s3 << EOD
+$s4 << EOD
 0.848157 38.5732
 2.03212 38.6516
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
-     $s1 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s2 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s3 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -488,26 +488,21 @@ double D1Psnr(const BenchPoint& point, const std::string& kind) {
 void ComputeBdRates(BenchRecord& record) {
   record.bd_rates.clear();
   const std::string kind = RecordPsnrKind(record);
-  // Reference curves in report order: the full baseline, then each decimated one.
-  std::vector<std::pair<std::string, std::vector<RdPoint>>> references = {{kMethodBaseline, {}}};
+  // Reference curves by name, which is also their report order: "baseline" before every
+  // "decimated ..." (the full baseline is always there, so every curve has its entry).
+  std::map<std::string, std::vector<RdPoint>> references = {{kMethodBaseline, {}}};
   std::map<std::pair<std::string, int>, std::vector<RdPoint>> curves;  // (codec, level)
   for (const BenchPoint& p : record.points) {
     if (!p.ok) continue;
     const RdPoint point{p.bytes_per_frame, D1Psnr(p, kind)};
     if (p.method == kMethodBaseline) {
-      references.front().second.push_back(point);
+      references[kMethodBaseline].push_back(point);
     } else if (p.method == kMethodDecimated) {
-      const std::string name = std::string(kMethodDecimated) + " " + p.codec;
-      auto it = std::find_if(references.begin(), references.end(),
-                             [&](const auto& r) { return r.first == name; });
-      if (it == references.end()) it = references.insert(references.end(), {name, {}});
-      it->second.push_back(point);
+      references[std::string(kMethodDecimated) + " " + p.codec].push_back(point);
     } else if (p.method == kMethodMeshvid) {
       curves[{p.codec, p.level}].push_back(point);
     }
   }
-  std::stable_sort(references.begin() + 1, references.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [reference, reference_points] : references) {
     for (const auto& [key, points] : curves) {
       // One-point configurations (the lossless FFV1 reference) have no curve.

@@ -386,9 +386,9 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "own at spawn; the baseline's encode memory is that of its one run (fusion and coding "
       "at every setting).\n"
       "- BD-rate: Bjontegaard delta rate of each meshvid codec and level (over its qualities) "
-      "against the baseline and against each decimated curve, on D1 PSNR, mean of frames (a record "
-      "written before that figure "
-      "existed falls back to the D1 PSNR of the mean MSE, named in its BD-rate table): "
+      "against the baseline and against each decimated curve, on D1 PSNR, mean of frames (a "
+      "record written before that figure existed falls back to the D1 PSNR of the mean MSE, "
+      "named in its BD-rate table): "
       "log10(bytes per frame) as a monotone piecewise-cubic "
       "(PCHIP, Fritsch-Carlson) function of PSNR, integrated over the PSNR interval both "
       "curves cover (the piecewise-cubic variant of VCEG-M33). n/a when the intervals do "
@@ -400,8 +400,8 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "(BD-rate <= -90%), decodes >= 10x faster, and is never worse in coverage; goal (issue "
       "42): BD-rate <= -60% against the baseline decimated to meshvid's decoded vertex count "
       "(decimated draco 1x). Best BD-rate over meshvid's curves; decode speed = median meshvid "
-      "decode fps at the finest level over "
-      "median baseline decode fps; coverage = the lowest meshvid coverage at the finest level "
+      "decode fps at the finest level over median baseline decode fps; coverage = the lowest "
+      "meshvid coverage at the finest level "
       "against the best baseline coverage.\n\n";
   md +=
       "| sequence | rig | best BD-rate | best BD-rate vs decimated 1x | decode speed vs baseline "

@@ -535,23 +535,19 @@ Status Runner::Decimated(BenchRecord& record) {
         "count it is sized by, was not measured)");
     return Advance(steps) ? Status::Ok() : CancelledError("bench cancelled");
   }
-  // The targets, and the codec name of each.
-  std::vector<std::size_t> targets;
+  // The vertex count of each multiple, and the codec name its points are recorded under.
+  std::vector<int> targets;
   std::map<std::size_t, std::string> codec_of_target;
-  for (double multiple : kDecimatedMultiples) {
-    const auto target = static_cast<std::size_t>(std::lround(multiple * reference->vertices));
-    targets.push_back(target);
-    codec_of_target[target] = DecimatedCodecName(multiple);
-  }
   bool all_done = true;
   for (double multiple : kDecimatedMultiples) {
+    const int target = static_cast<int>(std::lround(multiple * reference->vertices));
+    const std::string codec = DecimatedCodecName(multiple);
+    targets.push_back(target);
+    codec_of_target[static_cast<std::size_t>(target)] = codec;
     for (int bits : options_.decimated_bits) {
-      const BenchPoint* p =
-          FindPoint(record, kMethodDecimated, DecimatedCodecName(multiple), bits, -1);
-      const BenchEncode* e =
-          FindEncode(record, kMethodDecimated, DecimatedCodecName(multiple), bits);
-      all_done = all_done && Finished(p) && e != nullptr &&
-                 e->target_vertices == std::lround(multiple * reference->vertices);
+      const BenchEncode* e = FindEncode(record, kMethodDecimated, codec, bits);
+      all_done = all_done && Finished(FindPoint(record, kMethodDecimated, codec, bits, -1)) &&
+                 e != nullptr && e->target_vertices == target;
     }
   }
   if (options_.resume && all_done) {
@@ -563,8 +559,7 @@ Status Runner::Decimated(BenchRecord& record) {
 
   const std::string out = dir_ + "/decimated";
   const std::string summary_path = out + "/summary.json";
-  std::string target_list;
-  for (std::size_t t : targets) target_list += (target_list.empty() ? "" : ",") + std::to_string(t);
+  const std::string target_list = JoinInts(targets);
   const std::vector<std::string> args = {
       "bench-baseline", record.capture, "-o",     out,
       "--decimate",     target_list,    "--bits", JoinInts(options_.decimated_bits),

@@ -103,7 +103,7 @@ BENCHMARK(BM_SambaFuseThreeViews)->Unit(benchmark::kMillisecond)->UseRealTime();
 /// A key frame's base: one frame's 3 views fused from tuning.base_fusion_points points, as the
 /// encoder fuses a base, decimated with the encoder's default base bounds (base_vertices, 1%
 /// of the size from every fused vertex, the normal deviation, edges of at most 3% of the size
-/// as with --deform). Fused once per frame before timing; every iteration
+/// as the encoder does). Fused once per frame before timing; every iteration
 /// decimates each of the frames once.
 void BM_SambaDecimateBase(benchmark::State& state) {
   const SambaViews* samba = Samba();
@@ -128,7 +128,7 @@ void BM_SambaDecimateBase(benchmark::State& state) {
   }
   DecimationOptions options;
   options.target_vertices = defaults.base_vertices;
-  // The fractions of the size the encoder derives the two lengths from (with --deform).
+  // The fractions of the size the encoder derives the two lengths from.
   options.max_error = 0.01 * samba->size;
   options.max_normal_deviation_degrees = defaults.tuning.base_max_normal_deviation_degrees;
   options.max_edge_length = 0.03 * samba->size;

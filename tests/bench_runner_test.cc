@@ -451,9 +451,9 @@ TEST(BenchRunnerTest, SequencesRigsAndListsAreParsed) {
   EXPECT_NE(bad.status().message().find("--bits '8,,12'"), std::string::npos);
   EXPECT_FALSE(ParseIntList("31", 1, 30, "--bits").ok());
 
-  auto extra = ParseEncodeArgs("  --deform 1\t--node-spacing 0.05 ");
+  auto extra = ParseEncodeArgs("  --rebase-gain 4\t--node-spacing 0.05 ");
   ASSERT_TRUE(extra.ok()) << extra.status().ToString();
-  EXPECT_EQ(*extra, (std::vector<std::string>{"--deform", "1", "--node-spacing", "0.05"}));
+  EXPECT_EQ(*extra, (std::vector<std::string>{"--rebase-gain", "4", "--node-spacing", "0.05"}));
   ASSERT_TRUE(ParseEncodeArgs("").ok());
   EXPECT_TRUE(ParseEncodeArgs("")->empty());
   for (const char* reserved : {"-o x.mvid", "--quality 20", "--quality=20", "--frames 0:5", "-q"}) {
@@ -467,27 +467,27 @@ TEST(BenchRunnerTest, SequencesRigsAndListsAreParsed) {
 TEST(BenchRunnerTest, ExtraEncodeArgumentsReachEveryEncodeAndAreKeptApart) {
   FakeBench bench;
   bench.options.qualities = {40};
-  bench.options.encode_args = {"--deform", "1"};
+  bench.options.encode_args = {"--rebase-gain", "4"};
   auto records = RunBench(bench.options, bench.events);
   ASSERT_TRUE(records.ok()) << records.status().ToString();
   int encodes = 0;
   for (const std::string& call : bench.Calls()) {
     if (call.rfind("encode ", 0) != 0) continue;
     ++encodes;
-    EXPECT_NE(call.find(" --deform 1 "), std::string::npos) << call;
+    EXPECT_NE(call.find(" --rebase-gain 4 "), std::string::npos) << call;
   }
   EXPECT_EQ(encodes, 2);  // q40 and the lossless point
-  EXPECT_EQ((*records)[0].encode_args, "--deform 1");
+  EXPECT_EQ((*records)[0].encode_args, "--rebase-gain 4");
   for (const BenchEncode& e : (*records)[0].encodes) {
     if (e.method == kMethodMeshvid) {
-      EXPECT_NE(e.command.find("--deform 1"), std::string::npos) << e.command;
+      EXPECT_NE(e.command.find("--rebase-gain 4"), std::string::npos) << e.command;
     }
   }
   auto saved = ReadBenchRecord(bench.options.results_dir + "/fake-3-arc.json");
   ASSERT_TRUE(saved.ok()) << saved.status().ToString();
-  EXPECT_EQ(saved->encode_args, "--deform 1");
+  EXPECT_EQ(saved->encode_args, "--rebase-gain 4");
   const std::string report = GenerateResultsMarkdown({*saved}, ReportOptions{});
-  EXPECT_NE(report.find("was given `--deform 1`"), std::string::npos);
+  EXPECT_NE(report.find("was given `--rebase-gain 4`"), std::string::npos);
 
   // The defaults again: the record made with the extra arguments is not reused.
   const std::size_t calls = bench.Calls().size();
@@ -502,7 +502,7 @@ TEST(BenchRunnerTest, ExtraEncodeArgumentsReachEveryEncodeAndAreKeptApart) {
   const std::vector<std::string> after = bench.Calls();
   ASSERT_GT(after.size(), calls);
   for (std::size_t i = calls; i < after.size(); ++i) {
-    EXPECT_EQ(after[i].find("--deform"), std::string::npos) << after[i];
+    EXPECT_EQ(after[i].find("--rebase-gain"), std::string::npos) << after[i];
   }
   EXPECT_EQ((*records)[0].encode_args, "");
 }

@@ -1,7 +1,7 @@
 // `meshvid encode` of an open, thin surface: the cloth scene (a hanging sheet) seen by the
 // default 3-view arc encodes, and decodes as a sheet, with a boundary, whose area is about
 // the area of the cloth the views saw (no invented closing sheet behind it); tracked by the
-// embedded deformation (`--deform`), its first frames stay one key group.
+// embedded deformation, its first frames stay one key group.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -66,7 +66,7 @@ TEST(ClothEncodeTest, DeformationTracksTheWavingSheetInOneKeyGroup) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
   const testing::CliRun run =
-      SimulateAndEncodeCloth(dir, "--deform 1 --summary-json '" + dir.File("summary.json") + "'");
+      SimulateAndEncodeCloth(dir, "--summary-json '" + dir.File("summary.json") + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary =
       nlohmann::json::parse(testing::ReadFile(dir.File("summary.json")));

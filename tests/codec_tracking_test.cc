@@ -1,8 +1,6 @@
-// The frame-to-frame piece-graph tracker (codec/enc/graph_tracking.h): a part displaced by a
+// The embedded-deformation tracker (codec/enc/deformation_tracking.h): a part displaced by a
 // fifth of the object between two frames is re-acquired, and a bending cylinder turning 10
-// degrees a frame is followed by one key group over 60 frames; the embedded-deformation
-// tracker (codec/enc/deformation_tracking.h) follows the same bend and re-acquires the same
-// part.
+// degrees a frame is followed by one key group over 60 frames.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +14,6 @@
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/deformation_tracking.h"
 #include "codec/enc/encoder.h"
-#include "codec/enc/graph_tracking.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 #include "tools/eval/surface_distance.h"
@@ -41,61 +38,8 @@ TriangleMesh BodyAndPart(int rings, const Eigen::Vector3f& shift) {
   return mesh;
 }
 
-/// Root mean square distance between the points `t` and `truth` put the vertices at.
-float RmsApart(const TriangleMesh& mesh, std::size_t first, std::size_t end,
-               const RigidTransform& t, const RigidTransform& truth) {
-  double sum = 0;
-  for (std::size_t v = first; v < end; ++v) {
-    sum += (t.Apply(mesh.positions[v]) - truth.Apply(mesh.positions[v])).squaredNorm();
-  }
-  return static_cast<float>(std::sqrt(sum / double(end - first)));
-}
-
-SegmentationOptions TrackingSegmentationOptions(float diagonal) {
-  SegmentationOptions seg;  // the encoder's defaults: fractions of the diagonal
-  seg.tolerance = 0.005f * diagonal;
-  seg.shot.max_distance = 0.08f * diagonal;
-  seg.shot.min_abs_cos = 0.5f;
-  return seg;
-}
-
-TEST(GraphTracking, ReacquiresAPartDisplacedByAFifthOfTheObject) {
-  const TriangleMesh base = BodyAndPart(24, Eigen::Vector3f::Zero());
-  const std::size_t body = base.vertex_count() / 2;
-  const float diagonal = BoundingBox(base).diagonal().norm();  // 2.06
-  // Between two frames the part moves a fifth of the object's size (its 1.95 length) up and
-  // towards the viewer, 0.39 in all: nearly five times the normal-shooting search distance.
-  RigidTransform truth;
-  truth.translation = Eigen::Vector3f(0, 0.3f, 0.25f);
-  const TriangleMesh data = BodyAndPart(40, truth.translation);
-  auto target = ShootingTarget::Create(data);
-  ASSERT_TRUE(target.ok()) << target.status().ToString();
-  std::vector<std::int32_t> labels(base.vertex_count(), 0);
-  for (std::size_t v = body; v < labels.size(); ++v) labels[v] = 1;
-  const BaseTopology topology(base);
-  const SegmentationOptions seg = TrackingSegmentationOptions(diagonal);
-  GraphTrackingOptions options;
-  options.reacquire_max_distance = 0.25f * diagonal;
-  const std::vector<RigidTransform> still(2);
-  const GraphTracker tracker(topology, labels, 2, seg, options);
-  GraphTrackStats stats;
-  const std::vector<RigidTransform> tracked =
-      tracker.Track(**target, data.positions, still, still, {}, &stats);
-  ASSERT_EQ(tracked.size(), 2u);
-  EXPECT_EQ(stats.reacquired, 1);
-  EXPECT_LT(RmsApart(base, body, base.vertex_count(), tracked[1], truth), seg.tolerance);
-  EXPECT_LT(RmsApart(base, 0, body, tracked[0], RigidTransform{}), 0.2f * seg.tolerance);
-  // Its members agree with the data again.
-  EXPECT_GT(tracker.Agreeing(1, **target, tracked[1]), 0.9 * double(base.vertex_count() - body));
-  // Without the search, the joint solve alone does not find it.
-  options.reacquire_below = 0;
-  const GraphTracker joint_only(topology, labels, 2, seg, options);
-  const std::vector<RigidTransform> lost = joint_only.Track(**target, data.positions, still, still);
-  EXPECT_GT(RmsApart(base, body, base.vertex_count(), lost[1], truth), 5 * seg.tolerance);
-}
-
-// The embedded-deformation tracker, the same scene: the part's nodes find no data within the
-// search distance, are joined into one lost part and found again over the whole frame.
+// Between two frames the part moves a fifth of the object's size: its nodes find no data within
+// the search distance, are joined into one lost part and found again over the whole frame.
 TEST(DeformationTracker, ReacquiresAPartDisplacedByAFifthOfTheObject) {
   const TriangleMesh base = BodyAndPart(24, Eigen::Vector3f::Zero());
   const std::size_t body = base.vertex_count() / 2;
@@ -149,34 +93,6 @@ TEST(DeformationTracker, ReacquiresAPartDisplacedByAFifthOfTheObject) {
   EXPECT_LT(worst(tracked, 0, body, Eigen::Vector3f::Zero(), &off_truth),
             0.25 * options.tolerance);
   EXPECT_LT(off_truth, 0.5 * options.tolerance);
-}
-
-TEST(GraphTracking, SplitsLargePiecesIntoConnectedNodes) {
-  const TriangleMesh sphere = testing::LatLongSphere(16, 32);
-  const BaseTopology topology(sphere);
-  // Piece 0: the upper half; piece 1: the lower half less a small cap, piece 2.
-  std::vector<std::int32_t> labels(sphere.vertex_count());
-  for (std::size_t v = 0; v < labels.size(); ++v) {
-    labels[v] = sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2;
-  }
-  std::vector<std::int32_t> parents;
-  const int count = SplitIntoNodes(topology, 3, 40, 64, &labels, &parents);
-  ASSERT_EQ(parents.size(), std::size_t(count));
-  EXPECT_GE(count, 3 + 8);
-  std::vector<int> sizes(count, 0);
-  for (std::int32_t l : labels) ++sizes[l];
-  for (int p = 0; p < count; ++p) {
-    EXPECT_GE(sizes[p], 3) << "node " << p;
-    EXPECT_LE(sizes[p], 3 * 40) << "node " << p;
-  }
-  // Every node lies within the piece it came from (the halves stay apart).
-  for (std::size_t v = 0; v < labels.size(); ++v) {
-    const int piece = parents[labels[v]];
-    EXPECT_EQ(piece, sphere.positions[v].z() > 0 ? 0 : sphere.positions[v].z() > -0.9f ? 1 : 2);
-  }
-  // The budget holds: at most 5 pieces.
-  std::vector<std::int32_t> few(sphere.vertex_count(), 0);
-  EXPECT_EQ(SplitIntoNodes(topology, 1, 40, 5, &few, &parents), 5);
 }
 
 /// A capped tube along x (length 2, radius 0.2) bent at its middle: the right half turned by
@@ -406,9 +322,7 @@ TEST(DeformationTracker, ALimbTurnedFarAtOnceIsMostlyFoundAgain) {
 /// decimations' edge bounds (EncoderTuning::base_max_edge, proxy_max_edge) as given (0: the
 /// defaults).
 StatusOr<EncodeSummary> EncodeOneViewFrames(const std::vector<TriangleMesh>& frames,
-                                            std::vector<std::uint8_t>* bytes,
-                                            bool deformation_tracking = false,
-                                            double max_edge = 0) {
+                                            std::vector<std::uint8_t>* bytes, double max_edge = 0) {
   std::vector<std::vector<TriangleMesh>> views;
   for (const TriangleMesh& frame : frames) views.push_back({frame});
   MESHVID_ASSIGN_OR_RETURN(MemoryFrameSource source,
@@ -419,7 +333,6 @@ StatusOr<EncodeSummary> EncodeOneViewFrames(const std::vector<TriangleMesh>& fra
   options.gof_size = 4;
   // One view of 7,800 vertices: its proxy (5% by default) would be coarser than the base.
   options.tuning.proxy_fraction = 0.25;
-  options.tuning.deformation_tracking = deformation_tracking;
   options.tuning.base_max_edge = options.tuning.proxy_max_edge = max_edge;
   return EncodeCapture(
       source,
@@ -449,15 +362,14 @@ std::vector<double> RmsToFrames(const std::vector<std::uint8_t>& bytes,
   return rms;
 }
 
-/// Encodes the bending cylinder's first `frame_count` frames with the embedded deformation
-/// and expects one key group of them all, every frame decoding well within the
-/// segmentation's tolerance (0.5% of the diagonal) of its data, RMS over the decoded
-/// vertices. Returns the key group's summary (nullopt after a failure).
+/// Encodes the bending cylinder's first `frame_count` frames and expects one key group of them
+/// all, every frame decoding well within the tracking tolerance (0.5% of the diagonal) of its
+/// data, RMS over the decoded vertices. Returns the key group's summary (nullopt after a failure).
 std::optional<KeyGroupSummary> ExpectTheBendInOneKeyGroup(int frame_count) {
   std::vector<TriangleMesh> frames;
   for (int f = 0; f < frame_count; ++f) frames.push_back(BentCylinder(120, 64, SwingAngle(f)));
   std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, true);
+  StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes);
   EXPECT_TRUE(summary.ok()) << summary.status().ToString();
   if (!summary.ok()) return std::nullopt;
   EXPECT_EQ(summary->key_groups.size(), 1u);
@@ -475,10 +387,9 @@ std::optional<KeyGroupSummary> ExpectTheBendInOneKeyGroup(int frame_count) {
 // frame between +60 and -60 degrees, 60 frames, one closed view a frame. The embedded
 // deformation follows it with one key group; the file stores its nodes (MOTN version 3) and
 // every frame decodes within the tolerance (measured: RMS 0.013-0.024 tolerances, 296 nodes).
-// The piecewise-rigid segmentation makes every frame a key group. The deformation made 13 key
-// groups (1-11 frames) while the base and proxy decimations had no edge bound: the straight
-// key frame decimated into slivers along the whole tube, which cannot bend at the elbow, and
-// into a proxy with points only at the tube's ends.
+// Without edge bounds on the base and proxy decimations the straight key frame decimates into
+// slivers along the whole tube, which cannot bend at the elbow, and into a proxy with points
+// only at the tube's ends (13 key groups of 1-11 frames).
 TEST(DeformationTracking, FollowsABendingCylinderOver60FramesInOneKeyGroup) {
   const std::optional<KeyGroupSummary> key_group = ExpectTheBendInOneKeyGroup(60);
   ASSERT_TRUE(key_group.has_value());
@@ -496,27 +407,22 @@ TEST(DeformationTracking, FollowsTheBendsFirstFourFramesInOneKeyGroup) {
 }
 
 // A cylinder bending 20 to 50 degrees at a tight elbow, one closed view a frame: the elbow's
-// inside folds on itself and no seed of the segmentation stays within the tolerance of the
-// data (the encoder used to stop with "no rigid segment found"). The encode goes on with
-// patches and key groups, and every frame decodes near its data. The decimations are left
-// without an edge bound: with the default bounds, the base of slivers this test was built on
-// is not made and the segmentation finds its segments.
-TEST(KeyGroupFallback, AFoldedElbowThatDefeatsEverySegmentStillEncodesEveryFrame) {
+// inside folds on itself. Every frame decodes within the tolerance of its data, with the
+// default edge bounds and with a base of slivers (no edge bound).
+TEST(KeyGroupsOfACylinder, AFoldedElbowDecodesNearItsDataInEveryFrame) {
   std::vector<TriangleMesh> frames;
   for (int f = 0; f < 4; ++f) {
     frames.push_back(BentCylinder(120, 64, -float(20 + 10 * f) * kPi / 180));
   }
-  std::vector<std::uint8_t> bytes;
-  StatusOr<EncodeSummary> summary =
-      EncodeOneViewFrames(frames, &bytes, /*deformation_tracking=*/false, /*max_edge=*/1e6);
-  ASSERT_TRUE(summary.ok()) << summary.status().ToString();
-  EXPECT_TRUE(std::any_of(summary->key_groups.begin(), summary->key_groups.end(),
-                          [](const KeyGroupSummary& k) { return k.registered_share == 0; }))
-      << "no key group fell back: the scene no longer tests the fallback";
-  const std::vector<double> rms = RmsToFrames(bytes, frames);  // 0.3-1.4 mm
-  ASSERT_EQ(rms.size(), frames.size());
-  for (std::size_t f = 0; f < rms.size(); ++f) {
-    EXPECT_LT(rms[f], summary->tolerance) << "frame " << f;
+  for (const double max_edge : {0.0, 1e6}) {
+    std::vector<std::uint8_t> bytes;
+    StatusOr<EncodeSummary> summary = EncodeOneViewFrames(frames, &bytes, max_edge);
+    ASSERT_TRUE(summary.ok()) << summary.status().ToString();
+    const std::vector<double> rms = RmsToFrames(bytes, frames);
+    ASSERT_EQ(rms.size(), frames.size());
+    for (std::size_t f = 0; f < rms.size(); ++f) {
+      EXPECT_LT(rms[f], summary->tolerance) << "frame " << f << ", max edge " << max_edge;
+    }
   }
 }
 

@@ -1,5 +1,5 @@
 // Frame-to-frame non-rigid tracking of a key group's base as an embedded deformation (Sumner
-// et al. 2007; docs/encoder-method.md section 3.4): graph nodes sampled over the base surface,
+// et al. 2007; docs/encoder-method.md section 3): graph nodes sampled over the base surface,
 // every vertex blended over its nearest nodes along the surface, every node a rigid transform
 // per frame. That is the format's motion model as it stands (a node is a piece, the blend its
 // weights), so a decoder poses the result as any other track.

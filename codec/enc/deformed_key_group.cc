@@ -24,13 +24,11 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   analysis->motion = graph.motion;
   const int nodes = static_cast<int>(graph.node_count());
   summary.segments = nodes;
-  summary.patches = 0;
-  summary.registered_share = 1;
   summary.key_frame = key;
   DeformationTrackingOptions tracking;
   tracking.max_distance = ctx.lengths.max_distance;
-  tracking.tolerance = ctx.seg.tolerance;
-  tracking.min_normal_cos = ctx.seg.shot.min_abs_cos;
+  tracking.tolerance = ctx.lengths.tolerance;
+  tracking.min_normal_cos = ctx.shot.min_abs_cos;
   tracking.rigidity = options.tuning.deform_rigidity;
   tracking.coarse_stiffness = options.tuning.deform_coarse_stiffness;
   tracking.point_weight = options.tuning.deform_point_weight;
@@ -189,7 +187,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   if (options.tuning.deform_rigid_group_factor > 0) {
     const RigidNodeGroups groups = FindRigidNodeGroups(
         base.positions, graph.motion, graph.adjacent, tracks,
-        static_cast<float>(options.tuning.deform_rigid_group_factor * ctx.seg.tolerance));
+        static_cast<float>(options.tuning.deform_rigid_group_factor * ctx.lengths.tolerance));
     ApplyRigidNodeGroups(groups, &tracks);
     summary.rigid_groups = groups.group_count;
   }

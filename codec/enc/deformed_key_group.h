@@ -1,7 +1,7 @@
-// A key group's motion as an embedded deformation of its base (--deform; internal to the
-// encoder, key_group_analysis.cc): the deformation's nodes tracked frame by frame from the key
-// frame, backwards to the key group's first frame and forwards while the posed base explains
-// each frame's data.
+// A key group's motion as an embedded deformation of its base (internal to the encoder,
+// key_group_analysis.cc): the deformation's nodes tracked frame by frame from the key frame,
+// backwards to the key group's first frame and forwards while the posed base explains each
+// frame's data.
 #ifndef MESHVID_CODEC_ENC_DEFORMED_KEY_GROUP_H_
 #define MESHVID_CODEC_ENC_DEFORMED_KEY_GROUP_H_
 
@@ -26,8 +26,8 @@ struct PointsWithNormals {
 /// analysis, so a first-frame key group after a later key frame failed fuses no frame again.
 using FusedFrames = std::map<int, PointsWithNormals>;
 
-/// The motion of a key group as an embedded deformation of its base (tuning.
-/// deformation_tracking), fused from its key frame `key`: its nodes tracked frame by frame
+/// The motion of a key group as an embedded deformation of its base, fused from its key
+/// frame `key`: its nodes tracked frame by frame
 /// backwards from the key frame to the key group's first frame `first` (tuning.
 /// deform_backward_frames), then forwards while the posed base explains each frame's data (to
 /// the end of the capture unless `may_cut`). Fills the analysis' motion, tracks (from `first`

@@ -30,13 +30,11 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
   l.node_spacing = pick(o.tuning.node_spacing, 0.04);
   // Edge bounds for the deformation's nodes (4% apart) to bend the base and find data along
-  // it; the segmentation's pieces need neither (its measured defaults stay as they were).
-  const bool deforming = o.tuning.deformation_tracking;
-  l.base_max_edge = pick(o.tuning.base_max_edge, deforming ? 0.03 : 0);
-  l.proxy_max_edge = pick(o.tuning.proxy_max_edge, deforming ? 0.04 : 0);
-  l.farthest_growth = o.tuning.farthest_growth > 0 ? static_cast<float>(o.tuning.farthest_growth)
-                      : deforming ? l.max_distance
-                                  : kSegmentationFarthestGrowth * l.detail_max_distance;
+  // it.
+  l.base_max_edge = pick(o.tuning.base_max_edge, 0.03);
+  l.proxy_max_edge = pick(o.tuning.proxy_max_edge, 0.04);
+  l.farthest_growth =
+      o.tuning.farthest_growth > 0 ? static_cast<float>(o.tuning.farthest_growth) : l.max_distance;
   return l;
 }
 
@@ -85,9 +83,6 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.effort < 0 || o.effort > 9) return bad("effort must be in 0..9");
   if (o.gof_size < 1 || o.gof_size > 1024) return bad("gof_size must be in 1..1024");
   if (o.tuning.window < 2) return bad("tuning.window must be at least 2 frames");
-  if (o.tuning.key_group_window < 2) {
-    return bad("tuning.key_group_window must be at least 2 frames");
-  }
   if (!(o.rebase_gain_db >= 0 && o.rebase_gain_db <= 100)) {
     return bad("rebase_gain_db must be in [0, 100] dB");
   }
@@ -114,29 +109,9 @@ Status CheckOptions(const EncoderOptions& o) {
   if (!(o.tuning.max_angle_degrees > 0 && o.tuning.max_angle_degrees < 90)) {
     return bad("tuning.max_angle_degrees must be in (0, 90) degrees");
   }
-  if (!(o.tuning.tolerance_shrink > 0 && o.tuning.tolerance_shrink < 1)) {
-    return bad("tuning.tolerance_shrink must be in (0, 1)");
-  }
-  if (o.tuning.initial_tolerance_factor < 1) {
-    return bad("tuning.initial_tolerance_factor must be at least 1");
-  }
-  if (o.tuning.occlusion_frames < -1) {
-    return bad("tuning.occlusion_frames must be >= 0 (or -1: automatic)");
-  }
-  if (o.tuning.seed_vertices < 0) return bad("tuning.seed_vertices must be >= 0");
-  if (!(o.tuning.max_turn_degrees > 0 && o.tuning.max_turn_degrees <= 180)) {
-    return bad("tuning.max_turn_degrees must be in (0, 180] degrees");
-  }
-  if (!(o.tuning.min_solved_share >= 0 && o.tuning.min_solved_share <= 1)) {
-    return bad("tuning.min_solved_share must be in [0, 1]");
-  }
-  if (o.tuning.patch_vertices < 0) return bad("tuning.patch_vertices must be >= 0");
   if (o.tuning.base_position_bits < 8 || o.tuning.base_position_bits > 24) {
     return bad("tuning.base_position_bits must be in 8..24");
   }
-  if (!(o.tuning.patch_stiffness > 0)) return bad("tuning.patch_stiffness must be positive");
-  if (!(o.tuning.track_robust_scale >= 0)) return bad("tuning.track_robust_scale must be >= 0");
-  if (!(o.tuning.track_prior_weight >= 0)) return bad("tuning.track_prior_weight must be >= 0");
   if (!(o.tuning.reacquire_below >= 0 && o.tuning.reacquire_below <= 1) ||
       !(o.tuning.reacquire_gain >= 0 && o.tuning.reacquire_gain <= 1)) {
     return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
@@ -144,8 +119,6 @@ Status CheckOptions(const EncoderOptions& o) {
   if (!(o.tuning.base_max_edge >= 0) || !(o.tuning.proxy_max_edge >= 0)) {
     return bad("tuning.base_max_edge and tuning.proxy_max_edge must be >= 0");
   }
-  if (o.tuning.graph_node_vertices < 0) return bad("tuning.graph_node_vertices must be >= 0");
-  if (!(o.tuning.node_rejoin_factor >= 0)) return bad("tuning.node_rejoin_factor must be >= 0");
   if (!(o.tuning.node_spacing >= 0) || !(o.tuning.deform_rigidity > 0) ||
       !(o.tuning.deform_point_weight >= 0)) {
     return bad(
@@ -163,9 +136,6 @@ Status CheckOptions(const EncoderOptions& o) {
   }
   if (o.tuning.reacquire_min_vertices < 3) {
     return bad("tuning.reacquire_min_vertices must be at least 3");
-  }
-  if (o.tuning.max_segments < 1 || o.tuning.max_segments > 65535) {
-    return bad("tuning.max_segments must be in 1..65535");
   }
   if (o.tuning.farthest_growth < 0) return bad("tuning.farthest_growth must not be negative");
   if (o.tuning.max_distance < 0 || o.tuning.tolerance < 0 || o.tuning.detail_max_distance < 0 ||
@@ -189,7 +159,7 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
   const SampleGraph graph = SampleGraph::Build(lattice);
   DetailOptions detail;
   detail.shot.max_distance = ctx.lengths.detail_max_distance;
-  detail.shot.min_abs_cos = ctx.seg.shot.min_abs_cos;
+  detail.shot.min_abs_cos = ctx.shot.min_abs_cos;
   detail.outlier_distance = ctx.lengths.outlier_distance;
   const int first = analysis.summary.first_frame;
   const int frames = analysis.summary.frames;
@@ -277,35 +247,16 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     }
     MESHVID_ASSIGN_OR_RETURN(transform_steps, TransformSteps(options, scale, box));
   }
-  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}, {}};
+  EncodeContext ctx{source, options, progress, DeriveLengths(options, scale), {}, end, {}};
   if (options.tuning.seen_free_space) ctx.view_cameras = source.view_cameras();
   for (int v = 0; v < std::min<int>(source.view_count(), ctx.view_cameras.size()); ++v) {
     summary.free_space_views += ctx.view_cameras[v].CanProject();
   }
   summary.scale = scale;
   summary.tolerance = ctx.lengths.tolerance;
-  SegmentationOptions& seg = ctx.seg;
-  seg.tolerance = ctx.lengths.tolerance;
-  seg.initial_tolerance_factor = static_cast<float>(options.tuning.initial_tolerance_factor);
-  seg.tolerance_shrink = static_cast<float>(options.tuning.tolerance_shrink);
-  seg.min_segment_vertices = options.tuning.min_segment_vertices;
-  seg.max_segments = options.tuning.max_segments;
-  seg.occlusion_frames = options.tuning.occlusion_frames;
-  seg.icp_iterations = options.tuning.icp_iterations;
-  seg.seed_vertices = options.tuning.seed_vertices;
-  seg.max_turn_per_frame = static_cast<float>(options.tuning.max_turn_degrees * M_PI / 180);
-  seg.min_solved_share = static_cast<float>(options.tuning.min_solved_share);
-  seg.shot.max_distance = ctx.lengths.max_distance;
-  seg.shot.min_abs_cos =
+  ctx.shot.max_distance = ctx.lengths.max_distance;
+  ctx.shot.min_abs_cos =
       static_cast<float>(std::cos(options.tuning.max_angle_degrees * M_PI / 180));
-  GraphTrackingOptions& track = ctx.track;
-  track.stiffness = static_cast<float>(options.tuning.patch_stiffness);
-  track.robust_scale = static_cast<float>(options.tuning.track_robust_scale);
-  track.prior_weight = options.tuning.track_prior_weight;
-  track.reacquire_below = static_cast<float>(options.tuning.reacquire_below);
-  track.reacquire_gain = static_cast<float>(options.tuning.reacquire_gain);
-  track.reacquire_min_vertices = options.tuning.reacquire_min_vertices;
-  track.reacquire_max_distance = ctx.lengths.reacquire_max_distance;
 
   MvidWriterSettings settings;
   settings.levels = options.levels;
@@ -329,7 +280,8 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     const bool may_cut = options.max_key_groups == 0 ||
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
     auto analysis_start = Clock::now();
-    const int previous_frames = summary.key_groups.empty() ? 0 : summary.key_groups.back().frames;
+    const bool after_one_frame =
+        !summary.key_groups.empty() && summary.key_groups.back().frames == 1;
     // Proxies made ahead go to the cache: this key group's own, and the next frames' its
     // analysis looks at.
     for (int next = start; next <= start + kBasesAhead; ++next) {
@@ -343,7 +295,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     const double seconds_waited = SecondsSince(analysis_start);
     // After a key group of one frame the subject moves fast, and the next key groups likely
     // hold one frame too: their bases are made meanwhile.
-    if (options.tuning.base_ahead && may_cut && previous_frames == 1 && !options.base_mesh) {
+    if (options.tuning.base_ahead && may_cut && after_one_frame && !options.base_mesh) {
       for (int next = start + 1; next <= start + kBasesAhead && next < end; ++next) {
         if (ahead.Started(next)) continue;
         MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, source.LoadFrame(next));
@@ -360,7 +312,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       return ahead.TakeBase(frame);
     };
     MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
-                             AnalyseKeyGroup(ctx, start, may_cut, previous_frames, &proxies,
+                             AnalyseKeyGroup(ctx, start, may_cut, &proxies,
                                              std::move(base_made_ahead), later_base_ahead));
     analysis.seconds_base += seconds_waited;
     if (analysis.unused_base) {
@@ -368,9 +320,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       unused_base_frame = analysis.unused_base_frame;
     }
     summary.seconds_base += analysis.seconds_base;
-    summary.seconds_proxies += analysis.seconds_proxies;
-    summary.seconds_segmentation +=
-        SecondsSince(analysis_start) - analysis.seconds_base - analysis.seconds_proxies;
+    summary.seconds_tracking += SecondsSince(analysis_start) - analysis.seconds_base;
     if (!writer) {
       MESHVID_ASSIGN_OR_RETURN(writer, MvidWriter::Create(std::move(sink), analysis.base,
                                                           analysis.motion, settings));
@@ -387,16 +337,13 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   ReportProgress(progress, "detail", frames, frames);
 
   const double key_groups = double(summary.key_groups.size());
-  double segments = 0, patches = 0, rigid_groups = 0;
+  double segments = 0, rigid_groups = 0;
   for (const KeyGroupSummary& k : summary.key_groups) {
     segments += k.segments;
-    patches += k.patches;
     rigid_groups += k.rigid_groups;
-    summary.registered_share += k.registered_share / key_groups;
     summary.surface_share += k.surface_share / key_groups;
   }
   summary.segments = static_cast<int>(std::lround(segments / key_groups));
-  summary.patches = static_cast<int>(std::lround(patches / key_groups));
   summary.rigid_groups = static_cast<int>(std::lround(rigid_groups / key_groups));
   summary.base_vertices = summary.key_groups.front().base_vertices;
   const double total = double(samples);

@@ -1,6 +1,6 @@
 // The meshvid encoder: a multi-view capture in, a .mvid out, by the method of
-// docs/encoder-method.md (base mesh, multi-frame piecewise-rigid segmentation, fused displacement
-// video).
+// docs/encoder-method.md (base mesh, its motion as a tracked embedded deformation, fused
+// displacement video).
 #ifndef MESHVID_CODEC_ENC_ENCODER_H_
 #define MESHVID_CODEC_ENC_ENCODER_H_
 
@@ -53,13 +53,11 @@ struct EncoderTuning {
   /// Decimation bounds that keep the displacement mapping one-to-one (0: 1% of the diagonal).
   double base_max_error = 0;
   double base_max_normal_deviation_degrees = 30;
-  /// Longest edge the base decimation leaves (0: with deformation_tracking 3% of the
-  /// diagonal, under the nodes' spacing; without, unbounded). Quadrics alone collapse a
-  /// straight tube into slivers along its whole length: they lie on the straight tube but
-  /// cannot bend with it (a 60-frame swing of a bending cylinder made 13 key groups
-  /// unbounded, one at 3%; 4% left 1.5% of its points unexplained at 60 degrees). Not bound
-  /// for the segmentation: its pieces do not bend, and 3% would make samba's bases 9% and a
-  /// 600-vertex base of two bodies 2.8x larger than unbounded.
+  /// Longest edge the base decimation leaves (0: 3% of the diagonal, under the nodes'
+  /// spacing). Quadrics alone collapse a straight tube into slivers along its whole length:
+  /// they lie on the straight tube but cannot bend with it (a 60-frame swing of a bending
+  /// cylinder made 13 key groups unbounded, one at 3%; 4% left 1.5% of its points
+  /// unexplained at 60 degrees).
   double base_max_edge = 0;
   /// Draco position quantisation of the base meshes, bits per coordinate of the bounding box
   /// (the displacements correct what it moves along the normals). Samba, 3 views, 30 frames:
@@ -72,91 +70,36 @@ struct EncoderTuning {
   /// farthest bounding-box corner from the origin, plus the size): a rotation step moves no
   /// point within the reach by more than a translation step. The encoder measures the
   /// displacements from the quantised tracks, so the steps trade transform bytes against
-  /// the displacement video's. With --deform (60 frames, HEVC q40; bench/TRANSFORMS.md),
+  /// the displacement video's. Measured (60 frames, HEVC q40; bench/TRANSFORMS.md),
   /// 1/8192 and the byte planes take 0.6-8.9% off the file, D1 within 0.002 dB; 1/2048
   /// 2% more, with the video growing and the accuracy giving 0.002 mm.
   double transform_step = 0;
 
   // --- correspondence (docs/encoder-method.md eq. 4)
   double proxy_fraction = 0.05;   ///< share of each view's triangles kept in its proxy
-  /// Longest edge a proxy's decimation leaves (0: with deformation_tracking 4% of the
-  /// diagonal; without, unbounded): its vertices are the deformation's data points and those
-  /// of the key-group fit, and a straight stretch decimated without bound keeps points only at
-  /// its ends (its middle then looks like surface thrown far from the data).
+  /// Longest edge a proxy's decimation leaves (0: 4% of the diagonal): its vertices are the
+  /// key-group fit's data points, and a straight stretch decimated without bound keeps points
+  /// only at its ends (its middle then looks like surface thrown far from the data).
   double proxy_max_edge = 0;
   double max_distance = 0;        ///< farthest correspondence along a normal (0: 8%)
   double max_angle_degrees = 60;  ///< largest angle between base normal and data normal
 
-  // --- segmentation (docs/encoder-method.md section 3)
-  double tolerance = 0;          ///< UserTol of eq. 6 (0: 0.5% of the diagonal)
-  double initial_tolerance_factor = 3;  ///< the search starts at this x tolerance
-  double tolerance_shrink = 0.8;        ///< factor applied to the tolerance per step
-  int min_segment_vertices = 12; ///< smaller segments are not kept (>= 3)
-  int seed_vertices = 0;         ///< patch a segment is first tracked with (0: 1/40 of the base)
-  double max_turn_degrees = 20;  ///< most a segment turns between frames
-  double min_solved_share = 0.75;  ///< share of frames a kept segment must be solved in
-  int max_segments = 64;         ///< most segments
-  /// Frames in which a vertex's data may disagree with its segment (-1: a tenth of the
-  /// key frames, at least 5).
-  int occlusion_frames = -1;
-  int icp_iterations = 3;        ///< rigid solves per tolerance step and frame
-  int track_smoothing = 1;       ///< passes of (t-1, t, t+1) smoothing of the tracks
-  /// Unregistered vertices are split into patches of this many vertices, tracked jointly
-  /// (patch_tracking.h); 0: interpolated from the segments, as in the paper.
-  int patch_vertices = 40;
-  /// Weight of neighbouring pieces agreeing where they meet, against a point's distance to
-  /// the data: in the patch tracking and in the frame-to-frame graph tracker.
-  double patch_stiffness = 1;
-
-  // --- frame-to-frame tracking (graph_tracking.h; docs/encoder-method.md section 3.3)
-  /// Track frames with the joint piece-graph tracker: every segment and patch solved
-  /// together from a constant-velocity prediction, held together where they meet, poorly
-  /// supported pieces searched for again. False: each segment alone (TrackSegments), used
-  /// only past the segmentation's frames, as before the tracker. Off by default: on the
-  /// 3-view arc (60 frames, HEVC q40) it makes arm-block's key groups 4x longer (51 -> 13)
-  /// at 42% fewer bytes and +0.06 dB D1, but samba's RMS accuracy goes from 0.8 to 1.2 mm
-  /// (-0.01 dB D1, 14% fewer bytes) and horse-gallop encodes at half the speed.
-  bool graph_tracking = false;
-  /// Pieces (segments and patches) larger than this are split into graph nodes of about
-  /// this many vertices for the tracking (within max_segments pieces; 0: not split). A node
-  /// moves with its piece through the segmented frames and apart from it after them.
-  /// Measured (3-arc, 60 frames, key groups): samba 17 unsplit, 11 at 48, 12 at 32;
-  /// arm-block 13 unsplit, 8 at 48, 7 at 32 (but more motion bytes per key group).
-  int graph_node_vertices = 48;
-  /// A graph node joins the piece it was split from again when the two put its vertices
-  /// within this x the tolerance (RMS) in every frame of the key group. Measured on
-  /// arm-block 3-arc (60 frames, HEVC q40; cli_encode_test's 16 frames for the arm):
-  /// 1, 2, 3 kept 28.7%, 74.2%, 79.7% of the arm in one segment at 36.61, 36.60, 36.59 dB D1
-  /// and 9,714, 10,039, 10,224 bytes/frame.
-  double node_rejoin_factor = 2;
-  /// With graph tracking: the patches and graph nodes blend into their neighbours (smooth
-  /// where they part). False: every piece moves its vertices alone, only vertices of no
-  /// piece blend. Measured on samba 3-arc (60 frames, HEVC q40): blending made the motion
-  /// 161 kB instead of 22 kB (7,467 against 5,152 bytes/frame) at 38.69 against 38.72 dB D1.
-  bool blend_nodes = false;
-  /// Geman-McClure scale of the tracker's point-to-plane residuals, as a share of the
-  /// current tolerance (0: every correspondence within the tolerance weighs 1). Measured on
-  /// samba 3-arc (60 frames): 0.5 and 1 made 12 key groups, 0 made 11 at fewer bytes.
-  double track_robust_scale = 0;
-  /// Weight of each piece staying where the tracker's step starts, per member (damping).
-  double track_prior_weight = 0.01;
-  /// A piece with fewer of its members agreeing with the data (within the tolerance) after
-  /// the joint solve is searched for again; a new pose must reach this share too.
+  // --- tracking (deformation_tracking.h; docs/encoder-method.md section 3)
+  double tolerance = 0;  ///< the tracker's finest correspondence radius is 2x this (0: 0.5%)
+  /// With deform_reacquire, a part with fewer of its nodes' vertices finding data (within
+  /// the finest radius) after the solve is searched for again; a new pose must reach this
+  /// share too.
   double reacquire_below = 0.5;
-  /// A re-acquired pose is kept when this share more of the piece's members agree with it.
+  /// A re-acquired pose is kept when this share more of the part's vertices find data.
   double reacquire_gain = 0.2;
-  int reacquire_min_vertices = 12;    ///< smaller pieces are not searched for alone
-  /// Widest closest-point radius a lost piece is searched for within (0: 25%).
+  int reacquire_min_vertices = 12;  ///< smaller parts are not searched for alone
+  /// Widest closest-point radius a lost part is searched for within (0: 25%).
   double reacquire_max_distance = 0;
-
-  // --- non-rigid tracking (deformation_tracking.h; docs/encoder-method.md section 3.4)
-  /// Track a key group's base with an embedded deformation (nodes over the base surface,
-  /// every vertex blended over its nearest nodes, solved frame by frame to the data with
-  /// neighbouring nodes held together; the file stores the nodes, MOTN version 3); false:
-  /// the multi-frame piecewise-rigid segmentation and its segment and graph trackers. The
-  /// deformation keeps key groups longer at the same D1 on every shared pair
-  /// (bench/KEYGROUPS.md).
-  bool deformation_tracking = true;
+  // A key group's base is tracked as an embedded deformation: nodes over the base surface,
+  // every vertex blended over its nearest nodes, solved frame by frame to the data with
+  // neighbouring nodes held together; the file stores the nodes (MOTN version 3). It keeps
+  // key groups longer at the same D1 than the piecewise-rigid segmentation it replaced on
+  // every shared pair (bench/KEYGROUPS.md).
   /// Distance between the deformation's nodes along the base surface (0: 4% of the size,
   /// about 220 nodes on samba's 2,500-vertex base). Measured on samba 6-ring (60 frames,
   /// key groups ended by the former share rule at 0.005): 2.6% made 20 key groups but 53/60
@@ -181,7 +124,7 @@ struct EncoderTuning {
   /// HEVC q40; bench/DEFORM.md): 0.03 and 0.3 each lose on one of samba 6-ring and cloth 3-arc
   /// (D1, accuracy or key groups), and move the key groups by at most 2 of 16-20.
   double deform_point_weight = 0.1;
-  /// With deformation_tracking, neighbouring nodes are joined into rigid groups while one
+  /// Neighbouring nodes are joined into rigid groups while one
   /// rigid transform per frame stays within this many tolerances of each node's own (RMS over
   /// the vertices it moves, in every frame of the key group), and carry the group's transform
   /// (rigid_node_groups.h; 0: each node keeps its own). Measured (60 frames, HEVC q40;
@@ -204,7 +147,7 @@ struct EncoderTuning {
   /// threshold 0.005), fused against proxy: samba 6-ring D1 56.38 against 56.21 dB (28 and
   /// 29 key groups), arm-block 6-ring 52.61 against 52.51 dB (35 and 31).
   bool deform_track_fused = true;
-  /// With deformation_tracking, a part the solve leaves without data near it is searched for
+  /// A part the solve leaves without data near it is searched for
   /// again over the whole frame as one rigid body (DeformationTrackingOptions::
   /// reacquire_max_distance, with reacquire_below, reacquire_gain, reacquire_min_vertices and
   /// reacquire_max_distance above). Measured (60 frames, horse-gallop 48, HEVC q40;
@@ -214,7 +157,7 @@ struct EncoderTuning {
   /// found again, 1.5-2.4x as far from the truth (accuracy RMS). Off by default: fidelity
   /// first.
   bool deform_reacquire = false;
-  /// With deformation_tracking, where a key group may be cut: its key frame is this many
+  /// Where a key group may be cut: its key frame is this many
   /// frames after its first frame (or the capture's last), and the frames between are tracked
   /// backwards from it, so a key group extends both ways from its key frame. Where a frame
   /// between is lost, the key frame is the first frame after all (its later base was made in
@@ -231,29 +174,16 @@ struct EncoderTuning {
   double outlier_distance = 0;     ///< hits this far from the views' median are dropped (0: 0.5%)
 
   // --- analysis window
-  /// Most frames the segmentation analyses jointly (their small proxies stay in memory; one
-  /// full-resolution frame and `window` displacement frames are held besides). A key group
-  /// that may not be cut (the last of max_key_groups) longer than this is segmented on
-  /// `window` frames spread evenly over it, and every frame is then tracked with the segments.
+  /// Most displacement frames measured and filled together (before and after in time);
+  /// rounded to whole groups of frames (gof_size).
   int window = 256;
 
   // --- key groups
-  /// Frames a key group's segmentation analyses jointly before the fit decides where it
-  /// ends; past them its segments are tracked frame by frame while they explain the data.
-  int key_group_window = 48;
   /// How much farther from every data point than at the key frame any part of the tracked
   /// surface may lie before a new key group starts: a piece the motion threw where no view
-  /// contradicts it, however small its share (0: by tracker, kSegmentationFarthestGrowth
-  /// times detail_max_distance for the segmentation, max_distance with deformation_tracking).
+  /// contradicts it, however small its share (0: max_distance).
   double farthest_growth = 0;
 };
-
-/// The farthest growth (EncoderTuning::farthest_growth) of the piecewise-rigid segmentation,
-/// in displacement ranges (tuning.detail_max_distance). Measured over every shared pair
-/// (bench/ENCODE.md): 4 ends samba 3-arc's key group at a flap 2.8x per-frame fusion's error
-/// and changes nothing else; 2-3 also end the cloth's only tracked frames, more complete than
-/// a fresh base (0.03 dB less D1); the correspondence distance (8%) let the flap through.
-inline constexpr float kSegmentationFarthestGrowth = 4;
 
 /// The default of EncoderOptions::rebase_gain_db (bench/KEYGROUPS.md).
 inline constexpr double kDefaultRebaseGainDb = 2.0;
@@ -319,15 +249,13 @@ struct KeyGroupSummary {
   int key_frame = 0;
   int frames = 0;
   std::size_t base_vertices = 0;
-  int segments = 0;
-  int patches = 0;
-  /// With deformation_tracking: the groups of nodes moving together as one rigid body
-  /// (EncoderTuning::deform_rigid_group_factor; the segments when nodes are not joined).
+  int segments = 0;  ///< the deformation's nodes (the file's motion segments)
+  /// The groups of nodes moving together as one rigid body (EncoderTuning::
+  /// deform_rigid_group_factor; the nodes when they are not joined).
   int rigid_groups = 0;
-  /// With deformation_tracking: lost parts found again over the frames the key group kept
-  /// (EncoderTuning::deform_reacquire).
+  /// Lost parts found again over the frames the key group kept (EncoderTuning::
+  /// deform_reacquire).
   int reacquired_parts = 0;
-  double registered_share = 0;  ///< base vertices that joined a segment
   double surface_share = 0;     ///< base triangles seen by some view
   double key_frame_unexplained = 0;  ///< share of the key frame's points the base cannot reach
   /// Share of the key frame's base surface in front of what a camera saw (as cut_seen_through).
@@ -362,13 +290,11 @@ struct EncodeSummary {
   /// saw through (EncoderTuning::seen_free_space; 0: none).
   int free_space_views = 0;
   std::vector<KeyGroupSummary> key_groups;
-  // Key group 0's base and lattice; segment figures are means over the key groups.
+  // Key group 0's base and lattice; node figures are means over the key groups.
   std::size_t base_vertices = 0;
   std::size_t samples_per_frame = 0;  ///< displacement samples at the finest level
-  int segments = 0;
-  int patches = 0;              ///< patches over the unregistered vertices (after the segments)
-  int rigid_groups = 0;         ///< with --deform: rigid groups the nodes were joined into
-  double registered_share = 0;  ///< base vertices that joined a segment
+  int segments = 0;                   ///< the deformation's nodes
+  int rigid_groups = 0;               ///< rigid groups the nodes were joined into
   double surface_share = 0;     ///< base triangles seen by some view (the rest are hidden)
   double filled_share = 0;      ///< displacement samples filled by interpolation
   double hit_share = 0;         ///< samples with a fused measurement
@@ -376,13 +302,11 @@ struct EncodeSummary {
   MvidWriteStats stats;
   double scale = 0;             ///< frame 0's bounding-box diagonal
   double tolerance = 0;         ///< tolerances actually used (scene units)
-  double seconds_base = 0, seconds_proxies = 0, seconds_segmentation = 0,
-         seconds_detail = 0, seconds_coding = 0;
+  double seconds_base = 0, seconds_tracking = 0, seconds_detail = 0, seconds_coding = 0;
 };
 
 /// Encodes frames of `source` into `sink`, key group after key group. Stages report progress
-/// ("base mesh", "proxies", "segmentation", "tracking", "detail"); a cancelled callback stops
-/// with kCancelled.
+/// ("base mesh", "tracking", "detail"); a cancelled callback stops with kCancelled.
 StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
                                       const EncoderOptions& options,
                                       const ProgressCallback& progress = {});

@@ -12,8 +12,8 @@ const ProgressCallback kNoProgress;
 }  // namespace
 
 KeyFrameAhead::KeyFrameAhead(const EncodeContext& ctx)
-    : quiet_{ctx.source, ctx.options,    kNoProgress, ctx.lengths,
-             ctx.seg,    ctx.end,        ctx.track,   ctx.view_cameras} {}
+    : quiet_{ctx.source, ctx.options, kNoProgress,     ctx.lengths,
+             ctx.shot,   ctx.end,     ctx.view_cameras} {}
 
 KeyFrameAhead::~KeyFrameAhead() {
   for (auto& [frame, made] : made_) made.base.wait();

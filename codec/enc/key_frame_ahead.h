@@ -1,7 +1,7 @@
 // A key frame's base made on a second thread while the key group before it is analysed. Where
 // the subject moves fast every frame starts a key group, and a fresh base (fused, then
-// decimated on one core) is most of an encode's time; the other core meanwhile segments and
-// tracks the key group before. The base made ahead is the one AnalyseKeyGroup would make, so
+// decimated on one core) is most of an encode's time; the other core meanwhile tracks the key
+// group before. The base made ahead is the one AnalyseKeyGroup would make, so
 // the file is the same either way.
 #ifndef MESHVID_CODEC_ENC_KEY_FRAME_AHEAD_H_
 #define MESHVID_CODEC_ENC_KEY_FRAME_AHEAD_H_

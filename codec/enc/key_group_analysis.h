@@ -1,6 +1,6 @@
 // The analysis stages of one key group (internal to the encoder, encoder.cc): the frames'
-// proxies, the key group's base mesh, its piecewise-rigid motion, and where it ends (the first
-// frame its tracked base no longer explains, data_fit.h).
+// proxies, the key group's base mesh, its motion (deformed_key_group.h), and where it ends (the
+// first frame its tracked base no longer explains, data_fit.h).
 #ifndef MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_
 #define MESHVID_CODEC_ENC_KEY_GROUP_ANALYSIS_H_
 
@@ -19,10 +19,8 @@
 #include "codec/common/motion.h"
 #include "codec/common/progress.h"
 #include "codec/enc/encoder.h"
-#include "codec/enc/graph_tracking.h"
 #include "codec/enc/normal_shooting.h"
 #include "codec/enc/seen_free_space.h"
-#include "codec/enc/segmentation.h"
 #include "format/status.h"
 
 namespace meshvid {
@@ -51,7 +49,7 @@ struct FrameProxy {
 };
 
 /// Pixel blocks a proxy's SeenFreeSpace keeps (2: a quarter of a full-resolution depth image
-/// per view, since a key group holds up to key_group_window proxies).
+/// per view: a key group holds the proxies of the frames it tracks).
 inline constexpr int kFreeSpacePixelBlock = 2;
 
 /// Proxies by frame, shared by consecutive key groups (a cut key group's later frames are
@@ -67,9 +65,8 @@ struct EncodeContext {
   const EncoderOptions& options;
   const ProgressCallback& progress;
   Lengths lengths;
-  SegmentationOptions seg;
-  int end = 0;  ///< one past the last frame encoded
-  GraphTrackingOptions track;  ///< the frame-to-frame tracker's constants
+  ShotLimits shot;  ///< correspondence search (docs/encoder-method.md eq. 4)
+  int end = 0;      ///< one past the last frame encoded
   /// The source's cameras when tuning.seen_free_space is on (empty: none used).
   std::vector<ViewCalibration> view_cameras;
 };
@@ -89,7 +86,7 @@ struct KeyGroupAnalysis {
   MotionModel motion;
   std::vector<std::vector<RigidTransform>> tracks;  ///< per frame of the key group
   KeyGroupSummary summary;
-  double seconds_base = 0, seconds_proxies = 0;
+  double seconds_base = 0;
   /// With EncoderTuning::deform_backward_frames: the base fused for a later key frame that
   /// did not serve (a frame before it was lost), and that frame (-1: none). A key group that
   /// starts at that frame may take it as made ahead.
@@ -104,16 +101,15 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
                                         const FrameProxy& proxy);
 
-/// Analyses the key group that starts at frame `start`: base, segmentation, tracks; and, when
-/// `may_cut`, where it ends (the first frame its tracked base no longer explains), first
-/// looking at a few frames (more after a longer previous key group, `previous_frames`; 0: the
-/// first key group). `cache` keeps the proxies of frames the next key group may need.
+/// Analyses the key group that starts at frame `start`: base, motion, tracks; and, when
+/// `may_cut`, where it ends (the first frame its tracked base no longer explains). `cache`
+/// keeps the proxies of frames the next key group may need.
 /// `base_made_ahead`, when given, is frame `start`'s base (MakeKeyFrameBase's, made on another
 /// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy. With
 /// EncoderTuning::deform_backward_frames, `later_base_ahead`, when given, is asked for the
 /// later key frame's base (and puts its proxy in `cache`) before one is made.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
-    const EncodeContext& ctx, int start, bool may_cut, int previous_frames, ProxyCache* cache,
+    const EncodeContext& ctx, int start, bool may_cut, ProxyCache* cache,
     std::optional<TriangleMesh> base_made_ahead = {},
     const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead = {});
 

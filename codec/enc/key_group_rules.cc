@@ -60,7 +60,7 @@ void ObserveVertices(const EncodeContext& ctx, const TriangleMesh& base,
                      const MotionModel& motion, const ShootingTarget& target,
                      std::span<const RigidTransform> track, std::vector<char>* observed) {
   std::vector<Eigen::Vector3f> posed, normals;
-  ShotLimits limits = ctx.seg.shot;
+  ShotLimits limits = ctx.shot;
   limits.max_distance = ctx.lengths.detail_max_distance;
   PoseVertices(motion, track, base.positions, &posed);
   ComputeVertexNormals(posed, base.triangles, &normals);

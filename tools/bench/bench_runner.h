@@ -59,7 +59,7 @@ struct BenchOptions {
   bool keep_work = false;  ///< keep the baseline's decoded frames after evaluation
   /// Draw each record's still (BenchStillName) with `meshvid render` after its points.
   bool draw_stills = true;
-  /// Extra arguments of every `meshvid encode` (e.g. {"--deform", "1"}): a setting measured
+  /// Extra arguments of every `meshvid encode` (e.g. {"--rebase-gain", "4"}): a setting measured
   /// against the baseline as the default encoder is. Part of each record's run key, so a
   /// record made with other extra arguments is started afresh (give such runs their own -o).
   std::vector<std::string> encode_args;

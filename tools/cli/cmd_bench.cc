@@ -360,11 +360,12 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
                   "Quality of the one FFV1 (lossless reference) point")
       ->capture_default_str();
   cmd->add_flag("--no-lossless", args->no_lossless, "Skip the FFV1 reference point");
-  cmd->add_option("--encode-args", args->encode_args,
-                  "Extra arguments of every meshvid encode, split at spaces, e.g. '--deform 1':\n"
-                  "a setting measured against the baseline as the defaults are. A record made\n"
-                  "with other extra arguments starts afresh: give such a run its own -o and\n"
-                  "--report (e.g. -o bench/results-deform --report bench/RESULTS-deform.md)");
+  cmd->add_option(
+      "--encode-args", args->encode_args,
+      "Extra arguments of every meshvid encode, split at spaces, e.g. '--rebase-gain 4':\n"
+      "a setting measured against the baseline as the defaults are. A record made\n"
+      "with other extra arguments starts afresh: give such a run its own -o and\n"
+      "--report (e.g. -o bench/results-gain4 --report bench/RESULTS-gain4.md)");
   cmd->add_flag("--fresh", args->fresh, "Redo every step instead of resuming");
   cmd->add_flag("--keep-work", args->keep_work,
                 "Keep the baseline's decoded frames (large) after evaluating them");

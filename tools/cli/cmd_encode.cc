@@ -51,7 +51,6 @@ Status WithFlagNames(const Status& status) {
       {"base_max_extension", "--base-extension"},
       {"rebase_gain_db", "--rebase-gain"},
       {"max_key_groups", "--max-key-groups"},
-      {"key_group_window", "--key-group-window"},
       {"farthest_growth", "--farthest-growth"},
       {"base_vertices", "--base-vertices"},
       {"base_max_error", "--base-max-error"},
@@ -61,22 +60,6 @@ Status WithFlagNames(const Status& status) {
       {"base_position_bits", "--base-bits"},
       {"transform_step", "--transform-step"},
       {"tolerance", "--tol"},
-      {"initial_tolerance_factor", "--tol-start"},
-      {"tolerance_shrink", "--tol-shrink"},
-      {"occlusion_frames", "--occlusion-frames"},
-      {"min_segment_vertices", "--min-segment"},
-      {"seed_vertices", "--seed-vertices"},
-      {"max_turn_degrees", "--max-turn"},
-      {"min_solved_share", "--min-solved"},
-      {"max_segments", "--max-segments"},
-      {"icp_iterations", "--icp-iterations"},
-      {"track_smoothing", "--smoothing"},
-      {"patch_vertices", "--patch-vertices"},
-      {"patch_stiffness", "--stiffness"},
-      {"graph_node_vertices", "--node-vertices"},
-      {"node_rejoin_factor", "--node-rejoin"},
-      {"track_robust_scale", "--track-robust"},
-      {"track_prior_weight", "--track-prior"},
       {"reacquire_below", "--reacquire-below"},
       {"reacquire_gain", "--reacquire-gain"},
       {"reacquire_min_vertices", "--reacquire-min-vertices"},
@@ -137,8 +120,6 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["base_vertices"] = s.base_vertices;
   j["samples_per_frame"] = s.samples_per_frame;
   j["segments"] = s.segments;
-  j["patches"] = s.patches;
-  j["registered_share"] = s.registered_share;
   j["surface_share"] = s.surface_share;
   j["filled_share"] = s.filled_share;
   j["hit_share"] = s.hit_share;
@@ -156,10 +137,8 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
                                {"frames", k.frames},
                                {"base_vertices", k.base_vertices},
                                {"segments", k.segments},
-                               {"patches", k.patches},
                                {"rigid_groups", k.rigid_groups},
                                {"reacquired_parts", k.reacquired_parts},
-                               {"registered_share", k.registered_share},
                                {"surface_share", k.surface_share},
                                {"key_frame_unexplained", k.key_frame_unexplained},
                                {"key_frame_seen_through", k.key_frame_seen_through},
@@ -183,8 +162,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["seconds"] = seconds;
   j["frames_per_second"] = seconds > 0 ? frames / seconds : 0.0;
   j["seconds_by_stage"] = {{"base", s.seconds_base},
-                           {"proxies", s.seconds_proxies},
-                           {"segmentation", s.seconds_segmentation},
+                           {"tracking", s.seconds_tracking},
                            {"detail", s.seconds_detail},
                            {"coding", s.seconds_coding}};
   return j;
@@ -192,28 +170,16 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
 
 /// The summary's line on the motion, counting segments as `meshvid info` does (key group 0's,
 /// as stored in the file): the deformation's nodes and the rigid groups they were joined
-/// into, or the segmentation's rigid pieces and the patches over the rest; then the means
-/// over the key groups.
-std::string MotionLine(const EncodeSummary& s, const EncoderOptions& options) {
+/// into; then the means over the key groups.
+std::string MotionLine(const EncodeSummary& s) {
   const KeyGroupSummary first = s.key_groups.empty() ? KeyGroupSummary() : s.key_groups.front();
   char line[320];
-  if (options.tuning.deformation_tracking) {
-    std::snprintf(line, sizeof(line),
-                  "  motion        %s (deformation nodes) moving as %s in key group 0; "
-                  "means over key groups %d and %d; %.1f%% of base triangles seen\n",
-                  Count(first.segments, "segment").c_str(),
-                  Count(first.rigid_groups, "rigid group").c_str(), s.segments, s.rigid_groups,
-                  100 * s.surface_share);
-  } else {
-    std::snprintf(line, sizeof(line),
-                  "  motion        %s in key group 0 (%s + %s over the rest); means over key "
-                  "groups %d + %d; %.1f%% of base vertices registered, %.1f%% of base "
-                  "triangles seen\n",
-                  Count(first.segments + first.patches, "segment").c_str(),
-                  Count(first.segments, "rigid piece").c_str(),
-                  Count(first.patches, "patch", "patches").c_str(), s.segments, s.patches,
-                  100 * s.registered_share, 100 * s.surface_share);
-  }
+  std::snprintf(line, sizeof(line),
+                "  motion        %s (deformation nodes) moving as %s in key group 0; "
+                "means over key groups %d and %d; %.1f%% of base triangles seen\n",
+                Count(first.segments, "segment").c_str(),
+                Count(first.rigid_groups, "rigid group").c_str(), s.segments, s.rigid_groups,
+                100 * s.surface_share);
   return line;
 }
 
@@ -250,12 +216,11 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                Count(s.frames, "frame").c_str(), Count(s.views, "view").c_str(),
                args.capture.c_str(), args.output.c_str(), seconds, frames / seconds,
                s.key_groups.size(), frames / double(std::max<std::size_t>(1, s.key_groups.size())),
-               s.base_vertices, s.samples_per_frame, args.options.levels,
-               MotionLine(s, args.options).c_str(), 100 * s.hit_share, 100 * s.filled_share,
-               Kilobytes(b.base_bytes).c_str(), Kilobytes(b.motion_bytes).c_str(),
-               Kilobytes(b.transform_bytes).c_str(), Kilobytes(b.video_bytes).c_str(),
-               Kilobytes(b.total_bytes).c_str(), Kilobytes(b.total_bytes / frames).c_str(),
-               MbitPerSecond(s), s.frame_rate);
+               s.base_vertices, s.samples_per_frame, args.options.levels, MotionLine(s).c_str(),
+               100 * s.hit_share, 100 * s.filled_share, Kilobytes(b.base_bytes).c_str(),
+               Kilobytes(b.motion_bytes).c_str(), Kilobytes(b.transform_bytes).c_str(),
+               Kilobytes(b.video_bytes).c_str(), Kilobytes(b.total_bytes).c_str(),
+               Kilobytes(b.total_bytes / frames).c_str(), MbitPerSecond(s), s.frame_rate);
   PrintHeldFrames(s, args.options);
   if (s.free_space_views > 0) {
     std::fprintf(stderr,
@@ -327,9 +292,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "encode",
       "Encode a multi-view capture into a .mvid: per key group a base mesh (fused from its\n"
-      "first frame or given), its motion (an embedded deformation tracked frame by frame, or\n"
-      "with --deform 0 a multi-frame piecewise-rigid segmentation), and the fused surface\n"
-      "detail as a displacement video. Lengths default to fractions of frame 0's size.");
+      "first frame or given), its motion (an embedded deformation tracked frame by frame),\n"
+      "and the fused surface detail as a displacement video. Lengths default to fractions of\n"
+      "frame 0's size.");
   cmd->add_option("CAPTURE", args->capture,
                   "The capture: a manifest.json, a file pattern with {frame} and {view} "
                   "(cap/f{frame:04}_v{view}.ply) or a Stanford .conf")
@@ -352,9 +317,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--gof", o.gof_size, "Frames per group (random-access unit)")
       ->capture_default_str();
   cmd->add_option("--window", o.tuning.window,
-                  "Most frames the segmentation analyses jointly (and displacement frames "
-                  "filled together); a key group that may not be cut and is longer is "
-                  "segmented on this many frames spread over it and then tracked")
+                  "Most displacement frames measured and filled together (before and after in "
+                  "time), in whole groups of frames (--gof)")
       ->capture_default_str();
   cmd->add_option("--base-fusion-points", o.tuning.base_fusion_points,
                   "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
@@ -390,15 +354,11 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
                   "capture (for editing), 0: no limit")
       ->capture_default_str();
-  cmd->add_option("--key-group-window", o.tuning.key_group_window,
-                  "Frames a key group's segmentation analyses jointly before the fit decides "
-                  "where it ends; past them its segments are tracked frame by frame")
-      ->capture_default_str();
   cmd->add_option("--farthest-growth", o.tuning.farthest_growth,
                   "Start a new key group where some part of the tracked surface lies farther "
                   "from every captured point than at the key frame by more than this, in data "
-                  "units: a piece the motion threw where no view contradicts it (0: 4 times the "
-                  "displacement range, --detail-distance; with --deform, --max-distance)")
+                  "units: a piece the motion threw where no view contradicts it (0: "
+                  "--max-distance)")
       ->capture_default_str();
   cmd->add_option("--base-mesh", args->base_mesh,
                   "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "
@@ -414,7 +374,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--base-max-edge", o.tuning.base_max_edge,
                   "Longest edge the base decimation leaves, so the base can bend where the "
-                  "subject does (0: 3% of the size with --deform, unbounded without)")
+                  "subject does (0: 3% of the size)")
       ->capture_default_str();
   cmd->add_option("--base-bits", o.tuning.base_position_bits,
                   "Draco position quantisation of the base meshes, bits per coordinate "
@@ -425,106 +385,35 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "of the size); rotations are quantised to move no point of the capture more")
       ->capture_default_str();
   cmd->add_option("--tol", o.tuning.tolerance,
-                  "Segmentation tolerance UserTol (eq. 6): largest distance between a "
-                  "vertex moved by its segment and the data (0: 0.5% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--tol-start", o.tuning.initial_tolerance_factor,
-                  "Each frame's search starts at this multiple of --tol")
-      ->capture_default_str();
-  cmd->add_option("--tol-shrink", o.tuning.tolerance_shrink, "Tolerance factor per step, in (0, 1)")
-      ->capture_default_str();
-  cmd->add_option("--occlusion-frames", o.tuning.occlusion_frames,
-                  "Frames in which a vertex's data may disagree with its segment and it "
-                  "stays (frames without data cost nothing; -1: a tenth of the key "
-                  "frames, at least 5)")
-      ->capture_default_str();
-  cmd->add_option("--min-segment", o.tuning.min_segment_vertices,
-                  "Smallest segment kept (vertices, >= 3)")
-      ->capture_default_str();
-  cmd->add_option("--seed-vertices", o.tuning.seed_vertices,
-                  "Vertices of the patch around a seed vertex that each segment is first "
-                  "tracked with, then grown from (0: a fortieth of the base mesh)")
-      ->capture_default_str();
-  cmd->add_option("--max-turn", o.tuning.max_turn_degrees,
-                  "Most a segment may turn between frames, in degrees; a solve that turns "
-                  "it more is not believed")
-      ->capture_default_str();
-  cmd->add_option("--min-solved", o.tuning.min_solved_share,
-                  "Share of frames in which a segment's data must agree with it; a segment "
-                  "solved in fewer has lost its data and is dropped (its vertices are "
-                  "interpolated)")
-      ->capture_default_str();
-  cmd->add_option("--max-segments", o.tuning.max_segments, "Most segments")->capture_default_str();
-  cmd->add_option("--icp-iterations", o.tuning.icp_iterations,
-                  "Correspondence and rigid solve rounds per tolerance step")
-      ->capture_default_str();
-  cmd->add_option("--smoothing", o.tuning.track_smoothing,
-                  "Passes of (t-1, t, t+1) smoothing of the rigid tracks, each about its "
-                  "piece's centre")
-      ->capture_default_str();
-  cmd->add_option("--patch-vertices", o.tuning.patch_vertices,
-                  "Vertices per patch that the segmentation's unregistered vertices are split "
-                  "into; patches are tracked jointly, held together where they meet (0: "
-                  "interpolate those vertices from the segments, as the paper does)")
-      ->capture_default_str();
-  cmd->add_option("--stiffness", o.tuning.patch_stiffness,
-                  "Weight of neighbouring patches and segments agreeing where they meet, "
-                  "against the data")
-      ->capture_default_str();
-  cmd->add_option("--graph-tracking", o.tuning.graph_tracking,
-                  "Track frames with the joint piece graph (segments and patches solved "
-                  "together, lost pieces searched for again); false: each segment alone")
-      ->capture_default_str();
-  cmd->add_option("--node-vertices", o.tuning.graph_node_vertices,
-                  "Pieces larger than this are split into graph nodes of about this many "
-                  "vertices for the tracking (0: not split)")
-      ->capture_default_str();
-  cmd->add_option("--node-rejoin", o.tuning.node_rejoin_factor,
-                  "A graph node joins its piece again when the two put it within this x the "
-                  "tolerance (RMS) in every frame of the key group")
-      ->capture_default_str();
-  cmd->add_option("--blend-nodes", o.tuning.blend_nodes,
-                  "With graph tracking, blend patches and graph nodes into their neighbours "
-                  "(false: every piece moves its vertices alone)")
-      ->capture_default_str();
-  cmd->add_option("--track-robust", o.tuning.track_robust_scale,
-                  "Geman-McClure scale of the tracker's residuals, x the current tolerance (0: "
-                  "off)")
-      ->capture_default_str();
-  cmd->add_option("--track-prior", o.tuning.track_prior_weight,
-                  "Weight of each tracked piece staying where its step starts, per member")
+                  "Tracking tolerance: the finest correspondence radius is twice this, and "
+                  "--rigid-groups counts in it (0: 0.5% of the size)")
       ->capture_default_str();
   cmd->add_option("--reacquire-below", o.tuning.reacquire_below,
-                  "Share of a piece's members agreeing with the data below which the tracker "
-                  "searches for it again (0: never)")
+                  "With --deform-reacquire, share of a part's vertices finding data below which "
+                  "the tracker searches for it again (0: never)")
       ->capture_default_str();
   cmd->add_option("--reacquire-gain", o.tuning.reacquire_gain,
-                  "Share more of a piece's members that must agree with a re-acquired pose")
+                  "Share more of a part's vertices that must find data at a re-acquired pose")
       ->capture_default_str();
   cmd->add_option("--reacquire-min-vertices", o.tuning.reacquire_min_vertices,
-                  "Smallest piece searched for again alone")
+                  "Smallest part (vertices) searched for again alone")
       ->capture_default_str();
   cmd->add_option("--reacquire-distance", o.tuning.reacquire_max_distance,
-                  "Widest closest-point radius a lost piece is searched within (0: 25% of the "
+                  "Widest closest-point radius a lost part is searched within (0: 25% of the "
                   "size)")
       ->capture_default_str();
-  cmd->add_option("--deform", o.tuning.deformation_tracking,
-                  "Track each key group's base as an embedded deformation (nodes over its "
-                  "surface, each vertex blended over its nearest nodes, neighbours held "
-                  "together); 0: the multi-frame piecewise-rigid segmentation instead")
-      ->capture_default_str();
   cmd->add_option("--node-spacing", o.tuning.node_spacing,
-                  "With --deform, distance between the deformation's nodes along the surface "
+                  "Distance between the deformation's nodes along the surface "
                   "(0: 4% of the size)")
       ->capture_default_str()
       ->check(AtLeastZero());
   cmd->add_option("--rigidity", o.tuning.deform_rigidity,
-                  "With --deform, weight of neighbouring nodes agreeing on each other's "
+                  "Weight of neighbouring nodes agreeing on each other's "
                   "positions, per vertex a node carries")
       ->capture_default_str()
       ->check(AboveZero());
   cmd->add_option("--coarse-stiffness", o.tuning.deform_coarse_stiffness,
-                  "With --deform, on a key group's second frame (no velocity to predict its "
+                  "On a key group's second frame (no velocity to predict its "
                   "motion from yet), the rigidity's multiplier at the coarsest correspondence "
                   "radius, falling geometrically to 1 at the finest: a part that moved far first "
                   "moves as a whole, then bends. The frame is also solved at 1 throughout, and "
@@ -532,38 +421,38 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--point-weight", o.tuning.deform_point_weight,
-                  "With --deform, weight of the point-to-point distance beside the "
+                  "Weight of the point-to-point distance beside the "
                   "point-to-plane one")
       ->capture_default_str()
       ->check(AtLeastZero());
   cmd->add_option("--rigid-groups", o.tuning.deform_rigid_group_factor,
-                  "With --deform, join neighbouring nodes that move as one rigid body through "
+                  "Join neighbouring nodes that move as one rigid body through "
                   "a key group (one rigid transform poses each node's vertices within this "
                   "many tolerances, RMS, in every frame) and give them that transform (0: off)")
       ->capture_default_str()
       ->check(AtLeastZero());
   cmd->add_option("--deform-fused", o.tuning.deform_track_fused,
-                  "With --deform, track each frame to its views fused into a closed surface "
+                  "Track each frame to its views fused into a closed surface "
                   "instead of to the views themselves")
       ->capture_default_str();
   cmd->add_option("--deform-reacquire", o.tuning.deform_reacquire,
-                  "With --deform, search a part the tracking lost again over the whole frame "
+                  "Search a part the tracking lost again over the whole frame "
                   "as one rigid body (within --reacquire-distance; --reacquire-below, "
-                  "--reacquire-gain and --reacquire-min-vertices as for the segments)")
+                  "--reacquire-gain and --reacquire-min-vertices)")
       ->capture_default_str();
   cmd->add_option("--deform-backward", o.tuning.deform_backward_frames,
-                  "With --deform, make each key group's key frame this many frames after its "
+                  "Make each key group's key frame this many frames after its "
                   "first frame and track the frames between backwards from it, so a key group "
                   "extends both ways from its key frame (where one of them is lost, the key "
                   "frame is the first frame after all; 0: tracked forwards only)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
-                  "With --deform, Gauss-Newton steps per correspondence radius")
+                  "Gauss-Newton steps per correspondence radius")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
   cmd->add_option("--deform-first-iterations", o.tuning.deform_first_iterations,
-                  "With --deform, Gauss-Newton steps per radius on a key group's second frame "
+                  "Gauss-Newton steps per radius on a key group's second frame "
                   "(no velocity to predict its motion from yet)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
@@ -571,8 +460,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Share of each view's vertices kept in its correspondence proxy")
       ->capture_default_str();
   cmd->add_option("--proxy-max-edge", o.tuning.proxy_max_edge,
-                  "Longest edge a correspondence proxy's decimation leaves (0: 4% of the size "
-                  "with --deform, unbounded without)")
+                  "Longest edge a correspondence proxy's decimation leaves (0: 4% of the size)")
       ->capture_default_str();
   cmd->add_option("--max-distance", o.tuning.max_distance,
                   "Farthest correspondence along a normal; also the coarsest tolerance of a new "
@@ -597,31 +485,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                                  "key groups)"))
       ->type_name("FILE|-");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary");
-  // The embedded deformation's settings, which the segmentation does not read, and the
-  // segmentation's, which the deformation does not.
-  auto options_named = [cmd](std::initializer_list<const char*> names) {
-    std::vector<const CLI::Option*> options;
-    for (const char* name : names) options.push_back(cmd->get_option(name));
-    return options;
-  };
-  const std::vector<const CLI::Option*> deform_only = options_named(
-      {"--node-spacing", "--rigidity", "--coarse-stiffness", "--point-weight", "--rigid-groups",
-       "--deform-fused", "--deform-reacquire", "--deform-backward", "--deform-iterations",
-       "--deform-first-iterations"});
-  const std::vector<const CLI::Option*> segmentation_only = options_named(
-      {"--occlusion-frames", "--min-segment", "--seed-vertices", "--max-turn", "--min-solved",
-       "--max-segments", "--smoothing", "--patch-vertices", "--stiffness", "--graph-tracking",
-       "--node-vertices", "--node-rejoin", "--blend-nodes", "--track-robust", "--track-prior",
-       "--key-group-window"});
-  cmd->callback([args, exit_code, deform_only, segmentation_only] {
-    const bool deforming = args->options.tuning.deformation_tracking;
-    for (const CLI::Option* option : deforming ? segmentation_only : deform_only) {
-      if (option->count() == 0) continue;
-      std::fprintf(stderr, "meshvid: warning: %s has no effect %s\n",
-                   option->get_name().c_str(), deforming ? "with --deform 1" : "with --deform 0");
-    }
-    *exit_code = RunEncode(*args);
-  });
+  cmd->callback([args, exit_code] { *exit_code = RunEncode(*args); });
 }
 
 }  // namespace meshvid::cli

@@ -14,6 +14,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/deformation_tracking.h"
 #include "codec/enc/encoder.h"
+#include "codec/enc/motion_hint.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 #include "tools/eval/surface_distance.h"
@@ -179,6 +180,56 @@ TEST(DeformationGraph, CoversEveryVertexWithNearNodesHeldTogether) {
     }
   }
   EXPECT_EQ(queue.size(), nodes);
+}
+
+// A key group tracked two bodies into the frame that ended it: the left one rose 0.1 from the
+// frame before (where it had risen 0.5 already), the right one turned about its centre. The next
+// key group's base (the bodies where the tracking put them, tessellated anew) takes, node by
+// node, the step of the surface nearest it: predicted on from its key frame, each body moves
+// on as it moved into that frame.
+TEST(MotionHint, ANewKeyGroupsNodesMoveOnByTheStepOfTheNearestSurface) {
+  const Eigen::Vector3f left(-2, 0, 0), right(2, 0, 0);
+  TriangleMesh base = Ellipsoid(12, {1, 1, 1}, left);
+  AppendMesh(Ellipsoid(12, {1, 1, 1}, right), &base);
+  StatusOr<DeformationGraph> graph = BuildDeformationGraph(BaseTopology(base), 0.5f);
+  ASSERT_TRUE(graph.ok()) << graph.status().ToString();
+  const MotionModel& motion = graph->motion;
+  RigidTransform risen, rising, turn;
+  risen.translation = Eigen::Vector3f(0, 0.5f, 0);
+  rising.translation = Eigen::Vector3f(0, 0.6f, 0);
+  turn.rotation = Eigen::Quaternionf(Eigen::AngleAxisf(0.2f, Eigen::Vector3f::UnitZ()));
+  turn.translation = right - turn.rotation * right;
+  std::vector<RigidTransform> previous(motion.segment_count), tracked(motion.segment_count);
+  for (std::size_t j = 0; j < previous.size(); ++j) {
+    const bool on_left = base.positions[motion.node_vertices[j]].x() < 0;
+    previous[j] = on_left ? risen : RigidTransform{};
+    tracked[j] = on_left ? rising : turn;
+  }
+  const MotionHint hint = HintOf(7, base, motion, previous, tracked);
+  EXPECT_EQ(hint.frame, 7);
+  ASSERT_EQ(hint.positions.size(), base.vertex_count());
+  ASSERT_EQ(hint.steps.size(), base.vertex_count());
+  for (std::size_t v = 0; v < base.vertex_count(); ++v) {
+    const bool on_left = base.positions[v].x() < 0;
+    const Eigen::Vector3f moved =
+        on_left ? rising.Apply(base.positions[v]) : turn.Apply(base.positions[v]);
+    EXPECT_LT((hint.positions[v] - moved).norm(), 1e-5f) << "vertex " << v;
+  }
+
+  TriangleMesh next_base = Ellipsoid(15, {1, 1, 1}, rising.Apply(left));
+  AppendMesh(Ellipsoid(15, {1, 1, 1}, right), &next_base);
+  StatusOr<DeformationGraph> next_graph = BuildDeformationGraph(BaseTopology(next_base), 0.5f);
+  ASSERT_TRUE(next_graph.ok()) << next_graph.status().ToString();
+  const std::vector<RigidTransform> before = StepsBefore(hint, next_base, next_graph->motion);
+  ASSERT_EQ(before.size(), next_graph->node_count());
+  const RigidTransform step_up = Compose(rising, Inverse(risen));
+  for (std::size_t j = 0; j < before.size(); ++j) {
+    const Eigen::Vector3f node = next_base.positions[next_graph->motion.node_vertices[j]];
+    const RigidTransform predicted = PredictConstantVelocity(before[j], RigidTransform{});
+    const RigidTransform& step = node.x() < 0 ? step_up : turn;
+    EXPECT_LT((predicted.Apply(node) - step.Apply(node)).norm(), 1e-5f) << "node " << j;
+  }
+  EXPECT_TRUE(StepsBefore(MotionHint{}, next_base, next_graph->motion).empty());
 }
 
 TEST(DeformationTracker, FollowsACylinderBendingTenDegreesAFrame) {

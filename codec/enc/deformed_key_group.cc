@@ -9,12 +9,13 @@
 #include "codec/common/subdivision.h"
 #include "codec/enc/deformation_tracking.h"
 #include "codec/enc/key_group_rules.h"
+#include "codec/enc/motion_hint.h"
 #include "codec/enc/rigid_node_groups.h"
 
 namespace meshvid {
 
 Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
-                             int key, bool may_cut, ProxyCache* proxies,
+                             int key, bool may_cut, const MotionHint& hint, ProxyCache* proxies,
                              FusedFrames* fused_frames, KeyGroupAnalysis* analysis) {
   const EncoderOptions& options = ctx.options;
   const TriangleMesh& base = analysis->base;
@@ -52,6 +53,9 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   FitMeter meter(base, analysis->motion, lattice, ctx.lengths.detail_max_distance,
                  ctx.lengths.max_distance, /*judge_across=*/true);
   const std::vector<RigidTransform> identity(nodes);
+  // The frame after the key frame, moving on as the surface moved into the key frame.
+  const std::vector<RigidTransform> hinted_before =
+      hint.frame == key ? StepsBefore(hint, base, analysis->motion) : std::vector<RigidTransform>();
   const FrameProxy& key_frame = (*proxies)[key];
   const DataFit key_fit = meter.Measure(identity, key_frame);
   summary.key_frame_unexplained = summary.worst_unexplained = key_fit.unexplained_share;
@@ -118,43 +122,68 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
         next = tracker.Track(data, previous, before, &next_stats);
       }
       const int ahead_frame = t + direction;
-      if (run->empty() && supple_tracker && ahead_frame >= first && ahead_frame < ctx.end) {
-        // The first frame from the key frame has no velocity to predict from. Solved stiff at
-        // first, a fast part moves as a whole; at the set rigidity throughout, a waving sheet
-        // bends from the start. Both may explain this frame alike (a sheet that slid along
-        // itself still lies on its data) and part at the next, tracked from each: the start
-        // whose next frame leaves less of the data unexplained and less of the surface seen
-        // through is kept, the stiff one on a tie.
-        DeformationTrackStats supple_stats;
-        std::vector<RigidTransform> supple =
-            supple_tracker->Track(data, previous, {}, &supple_stats);
-        MESHVID_ASSIGN_OR_RETURN(const TrackingData ahead, tracking_data(ahead_frame));
-        const FrameProxy& ahead_proxy = (*proxies)[ahead_frame];
-        auto miss_ahead = [&](const std::vector<RigidTransform>& pose,
-                              std::vector<RigidTransform>* ahead_pose,
-                              DeformationTrackStats* ahead_stats) {
-          if (may_cut && !TrackedFrameExplained(ctx, key_fit, meter.Measure(pose, proxy))) {
-            return std::numeric_limits<double>::infinity();
-          }
-          *ahead_pose = tracker.Track(ahead, pose, previous, ahead_stats);
-          return DataMiss(meter.Measure(*ahead_pose, ahead_proxy));
-        };
-        std::vector<RigidTransform> stiff_ahead, supple_ahead;
-        DeformationTrackStats stiff_ahead_stats, supple_ahead_stats;
-        const double stiff_miss = miss_ahead(next, &stiff_ahead, &stiff_ahead_stats);
-        const double supple_miss = miss_ahead(supple, &supple_ahead, &supple_ahead_stats);
-        if (supple_miss < stiff_miss) {
-          next = std::move(supple);
-          next_stats = supple_stats;
-          looked_ahead = std::move(supple_ahead);
-          looked_ahead_reacquired = supple_ahead_stats.reacquired;
-        } else if (std::isfinite(stiff_miss)) {
-          looked_ahead = std::move(stiff_ahead);
-          looked_ahead_reacquired = stiff_ahead_stats.reacquired;
+      if (run->empty()) {
+        // The first frame from the key frame has no velocity of its own to predict from.
+        // Solved stiff at first, a fast part moves as a whole; at the set rigidity throughout,
+        // a waving sheet bends from the start; forwards from a key frame that ended the key
+        // group before, its nodes also move on as the surface moved into the key frame. These
+        // may explain this frame alike (a sheet that slid along itself still lies on its data)
+        // and part at the next, tracked from each: the start whose next frame leaves less of
+        // the data unexplained and less of the surface seen through is kept, the first on a
+        // tie (without a next frame there is no supple start, and the better of the others on
+        // this frame is kept).
+        const bool has_ahead = ahead_frame >= first && ahead_frame < ctx.end;
+        std::vector<std::vector<RigidTransform>> starts;
+        std::vector<DeformationTrackStats> starts_stats;
+        starts.push_back(std::move(next));
+        starts_stats.push_back(next_stats);
+        if (supple_tracker && has_ahead) {
+          starts_stats.emplace_back();
+          starts.push_back(supple_tracker->Track(data, previous, {}, &starts_stats.back()));
         }
+        if (direction > 0 && !hinted_before.empty()) {
+          starts_stats.emplace_back();
+          starts.push_back(tracker.Track(data, previous, hinted_before, &starts_stats.back()));
+        }
+        std::size_t chosen = 0;
+        if (starts.size() > 1) {
+          std::optional<TrackingData> ahead;
+          if (has_ahead) {
+            MESHVID_ASSIGN_OR_RETURN(ahead, tracking_data(ahead_frame));
+          }
+          double best_miss = std::numeric_limits<double>::infinity();
+          std::vector<RigidTransform> best_ahead;
+          DeformationTrackStats best_ahead_stats;
+          for (std::size_t k = 0; k < starts.size(); ++k) {
+            const DataFit fit = meter.Measure(starts[k], proxy);
+            if (may_cut && !TrackedFrameExplained(ctx, key_fit, fit)) continue;
+            double miss = DataMiss(fit);
+            std::vector<RigidTransform> ahead_pose;
+            DeformationTrackStats ahead_stats;
+            if (has_ahead) {
+              ahead_pose = tracker.Track(*ahead, starts[k], previous, &ahead_stats);
+              miss = DataMiss(meter.Measure(ahead_pose, (*proxies)[ahead_frame]));
+            }
+            if (miss < best_miss) {
+              best_miss = miss;
+              chosen = k;
+              best_ahead = std::move(ahead_pose);
+              best_ahead_stats = ahead_stats;
+            }
+          }
+          if (std::isfinite(best_miss) && has_ahead) {
+            looked_ahead = std::move(best_ahead);
+            looked_ahead_reacquired = best_ahead_stats.reacquired;
+          }
+        }
+        next = std::move(starts[chosen]);
+        next_stats = starts_stats[chosen];
       }
       if (may_cut) {
-        if (!KeepTrackedFrame(ctx, key_fit, meter.Measure(next, proxy), &summary)) return true;
+        if (!KeepTrackedFrame(ctx, key_fit, meter.Measure(next, proxy), &summary)) {
+          if (direction > 0) analysis->hint = HintOf(t, base, analysis->motion, previous, next);
+          return true;
+        }
       } else {
         RecordHeldFrame(ctx, key_fit, meter.Measure(next, proxy), t, &summary);
       }

@@ -34,9 +34,13 @@ using FusedFrames = std::map<int, PointsWithNormals>;
 /// on), frame count and node figures. The frame count is 0 when a frame between `first` and
 /// the key frame is not explained: the key frame cannot start at `first`. Fused tracking
 /// targets are kept in `fused_frames` (those behind a forward run are dropped; a backward run
-/// keeps its frames for a first-frame key group that may follow).
+/// keeps its frames for a first-frame key group that may follow). Where `hint` is at the key
+/// frame, the frame after it is also solved from the hint's steps (each node taking the step of
+/// the hint's position nearest it) and that start is weighed with the others; where a frame
+/// after the key frame ends the key group, the analysis' hint says how the surface moved into
+/// it.
 Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
-                             int key, bool may_cut, ProxyCache* proxies,
+                             int key, bool may_cut, const MotionHint& hint, ProxyCache* proxies,
                              FusedFrames* fused_frames, KeyGroupAnalysis* analysis);
 
 }  // namespace meshvid

@@ -276,6 +276,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   // A later key frame's base that did not serve (KeyGroupAnalysis::unused_base), and its frame.
   std::optional<TriangleMesh> unused_base;
   int unused_base_frame = -1;
+  MotionHint hint;  // how the surface moved into the frame that ended the last key group
   for (int start = first; start < end;) {
     const bool may_cut = options.max_key_groups == 0 ||
                          static_cast<int>(summary.key_groups.size()) + 1 < options.max_key_groups;
@@ -312,9 +313,10 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
       return ahead.TakeBase(frame);
     };
     MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
-                             AnalyseKeyGroup(ctx, start, may_cut, &proxies,
+                             AnalyseKeyGroup(ctx, start, may_cut, hint, &proxies,
                                              std::move(base_made_ahead), later_base_ahead));
     analysis.seconds_base += seconds_waited;
+    hint = std::move(analysis.hint);
     if (analysis.unused_base) {
       unused_base = std::move(analysis.unused_base);
       unused_base_frame = analysis.unused_base_frame;

@@ -164,7 +164,7 @@ StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, Proxy
 }  // namespace
 
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
-    const EncodeContext& ctx, int start, bool may_cut, ProxyCache* cache,
+    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint, ProxyCache* cache,
     std::optional<TriangleMesh> base_made_ahead,
     const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead) {
   const EncoderOptions& options = ctx.options;
@@ -191,7 +191,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     later.summary.base_vertices = later.base.vertex_count();
     later.seconds_base = SecondsSince(stage_start);
     MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, later_topology, start, later_key, may_cut,
-                                                  &proxies, &fused_frames, &later));
+                                                  hint, &proxies, &fused_frames, &later));
     if (later.summary.frames > 0) return later;
     // A frame before the later key frame was lost: the key frame is this one after all.
     seconds_on_later_key_frame = later.seconds_base;
@@ -206,8 +206,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start) + seconds_on_later_key_frame;
 
-  MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, &proxies,
-                                                &fused_frames, &analysis));
+  MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, hint,
+                                                &proxies, &fused_frames, &analysis));
   return analysis;
 }
 

@@ -19,6 +19,7 @@
 #include "codec/common/motion.h"
 #include "codec/common/progress.h"
 #include "codec/enc/encoder.h"
+#include "codec/enc/motion_hint.h"
 #include "codec/enc/normal_shooting.h"
 #include "codec/enc/seen_free_space.h"
 #include "format/status.h"
@@ -92,6 +93,9 @@ struct KeyGroupAnalysis {
   /// starts at that frame may take it as made ahead.
   std::optional<TriangleMesh> unused_base;
   int unused_base_frame = -1;
+  /// Where a frame ended the key group: how the surface moved into it (the next key group's
+  /// MotionHint).
+  MotionHint hint;
 };
 
 /// The base of a key frame whose views are `views` and proxy `proxy`: fused from few points
@@ -103,13 +107,15 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 
 /// Analyses the key group that starts at frame `start`: base, motion, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains). `cache`
-/// keeps the proxies of frames the next key group may need.
+/// keeps the proxies of frames the next key group may need. `hint`, the key group before's
+/// (KeyGroupAnalysis::hint), predicts the second frame's motion when its frame is the key
+/// frame.
 /// `base_made_ahead`, when given, is frame `start`'s base (MakeKeyFrameBase's, made on another
 /// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy. With
 /// EncoderTuning::deform_backward_frames, `later_base_ahead`, when given, is asked for the
 /// later key frame's base (and puts its proxy in `cache`) before one is made.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
-    const EncodeContext& ctx, int start, bool may_cut, ProxyCache* cache,
+    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint, ProxyCache* cache,
     std::optional<TriangleMesh> base_made_ahead = {},
     const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead = {});
 

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "bench/samba_frames.h"
-#include "codec/enc/decimation.h"
 #include "codec/enc/encoder.h"
-#include "codec/enc/surface_fusion.h"
+#include "codec/enc/fusion/decimation.h"
+#include "codec/enc/fusion/surface_fusion.h"
 #include "tools/io/mesh_sequence.h"
 #include "tools/sim/range_sensor.h"
 #include "tools/sim/rig.h"

@@ -39,6 +39,8 @@ function(meshvid_install_package)
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/meshvid/codec/common)
     string(APPEND pc_requires " tbb openmesh")
     string(APPEND pc_libs_extra " -lembree3")
+    # The encoder's public API: its root (encoder.h, options.h, summary.h, frame_source.h); the
+    # stages' folders are internal.
     meshvid_install_headers(codec/enc)
   endif()
   if(MESHVID_BUILD_TOOLS)

@@ -1,6 +1,7 @@
 # The test install_example (tests/CMakeLists.txt), run as `cmake -P`: installs the build tree
 # into a fresh prefix under WORK_DIR, builds examples/ against the installed package
-# (find_package(meshvid)), runs both examples, and builds mvid_info once more with
+# (find_package(meshvid)), checks that none of the encoder's internal folders was installed,
+# runs both examples, and builds mvid_info once more with
 # `pkg-config --cflags --libs meshvid` alone.
 # Variables: BINARY_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, LAUNCHER (may be empty),
 # GOLDEN (a .mvid for mvid_info).
@@ -16,6 +17,15 @@ endfunction()
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${prefix})
+
+# The encoder's stages are internal: only its root headers (the public API) are installed.
+file(GLOB installed_encoder_folders LIST_DIRECTORIES true
+     ${prefix}/include/meshvid/codec/enc/*/)
+foreach(folder ${installed_encoder_folders})
+  if(IS_DIRECTORY ${folder})
+    message(FATAL_ERROR "an internal encoder folder was installed: ${folder}")
+  endif()
+endforeach()
 
 # Nothing of the source tree may be needed: the package must stand alone.
 set(launcher_flags "")

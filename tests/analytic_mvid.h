@@ -9,7 +9,7 @@
 #include "codec/common/mesh.h"
 #include "codec/common/motion.h"
 #include "codec/dec/mvid_decoder.h"
-#include "codec/enc/mvid_writer.h"
+#include "codec/enc/coding/mvid_writer.h"
 #include "format/status.h"
 
 namespace meshvid::testing {

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 
-#include "codec/enc/detail.h"
-#include "codec/enc/normal_shooting.h"
+#include "codec/enc/key_groups/detail.h"
+#include "codec/enc/tracking/normal_shooting.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 

@@ -5,7 +5,7 @@
 #include <array>
 
 #include "codec/dec/base_mesh_decoder.h"
-#include "codec/enc/base_mesh_encoder.h"
+#include "codec/enc/coding/base_mesh_encoder.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 
 #include "codec/common/triangle_distance.h"
-#include "codec/enc/decimation.h"
-#include "codec/enc/seen_free_space.h"
-#include "codec/enc/surface_fusion.h"
+#include "codec/enc/fusion/decimation.h"
+#include "codec/enc/fusion/seen_free_space.h"
+#include "codec/enc/fusion/surface_fusion.h"
 #include "tests/test_util.h"
 #include "tools/io/capture.h"
 

@@ -12,12 +12,12 @@
 
 #include "codec/dec/motion_decoder.h"
 #include "codec/dec/mvid_decoder.h"
-#include "codec/enc/data_fit.h"
 #include "codec/enc/encoder.h"
+#include "codec/enc/tracking/data_fit.h"
 #include "format/container_reader.h"
 #include "tests/analytic_mvid.h"
-#include "tools/eval/surface_distance.h"
 #include "tests/test_util.h"
+#include "tools/eval/surface_distance.h"
 
 namespace meshvid {
 namespace {

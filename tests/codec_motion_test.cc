@@ -12,7 +12,7 @@
 #include "codec/common/deformation_graph.h"
 #include "codec/common/motion.h"
 #include "codec/dec/motion_decoder.h"
-#include "codec/enc/motion_encoder.h"
+#include "codec/enc/coding/motion_encoder.h"
 
 namespace meshvid {
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "codec/dec/mvid_decoder.h"
-#include "codec/enc/mvid_writer.h"
+#include "codec/enc/coding/mvid_writer.h"
 #include "format/container_reader.h"
 #include "format/container_writer.h"
 #include "tests/analytic_mvid.h"

@@ -1,4 +1,4 @@
-#include "codec/enc/rigid_node_groups.h"
+#include "codec/enc/tracking/rigid_node_groups.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// The embedded-deformation tracker (codec/enc/deformation_tracking.h): a part displaced by a
-// fifth of the object between two frames is re-acquired, and a bending cylinder turning 10
+// The embedded-deformation tracker (codec/enc/tracking/deformation_tracking.h): a part displaced
+// by a fifth of the object between two frames is re-acquired, and a bending cylinder turning 10
 // degrees a frame is followed by one key group over 60 frames.
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "codec/dec/mvid_decoder.h"
-#include "codec/enc/deformation_tracking.h"
 #include "codec/enc/encoder.h"
-#include "codec/enc/motion_hint.h"
+#include "codec/enc/tracking/deformation_tracking.h"
+#include "codec/enc/tracking/motion_hint.h"
 #include "tests/analytic_mvid.h"
 #include "tests/test_util.h"
 #include "tools/eval/surface_distance.h"

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "codec/dec/video_decoder.h"
-#include "codec/enc/video_encoder.h"
+#include "codec/enc/coding/video_encoder.h"
 
 namespace meshvid {
 namespace {

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "codec/dec/mvid_decoder.h"
-#include "codec/enc/mvid_writer.h"
+#include "codec/enc/coding/mvid_writer.h"
 #include "tests/analytic_mvid.h"
 #include "tests/fuzz/fuzz_util.h"
 

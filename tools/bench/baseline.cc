@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "codec/dec/base_mesh_decoder.h"
-#include "codec/enc/base_mesh_encoder.h"
-#include "codec/enc/decimation.h"
+#include "codec/enc/coding/base_mesh_encoder.h"
+#include "codec/enc/fusion/decimation.h"
 #include "format/output_file.h"
 #include "tools/io/mesh_io.h"
 

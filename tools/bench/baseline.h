@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "codec/common/progress.h"
-#include "codec/enc/surface_fusion.h"
+#include "codec/enc/fusion/surface_fusion.h"
 #include "format/status.h"
 #include "tools/io/capture.h"
 

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "codec/enc/surface_fusion.h"
+#include "codec/enc/fusion/surface_fusion.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"

@@ -1,0 +1,256 @@
+#include "codec/enc/coding/base_mesh_encoder.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <string>
+
+#include <draco/compression/config/compression_shared.h>
+#include <draco/compression/encode.h>
+#include <draco/core/encoder_buffer.h>
+#include <draco/mesh/mesh.h>
+
+#include "codec/common/point_tree.h"
+#include "codec/dec/base_mesh_decoder.h"
+
+namespace meshvid {
+
+namespace {
+
+/// Codes `mesh` with one Draco method and decodes the result.
+StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEncoding& settings,
+                                     bool edgebreaker) {
+  draco::Mesh draco_mesh;
+  draco_mesh.set_num_points(static_cast<std::uint32_t>(mesh.vertex_count()));
+  draco::GeometryAttribute attribute;
+  attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false,
+                 sizeof(float) * 3, 0);
+  const int position_id =
+      draco_mesh.AddAttribute(attribute, /*identity_mapping=*/true, mesh.vertex_count());
+  draco::PointAttribute* position = draco_mesh.attribute(position_id);
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    position->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)),
+                                mesh.positions[i].data());
+  }
+  draco_mesh.SetNumFaces(mesh.triangle_count());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    draco::Mesh::Face face;
+    for (int c = 0; c < 3; ++c) face[c] = draco::PointIndex(mesh.triangles[t][c]);
+    draco_mesh.SetFace(draco::FaceIndex(static_cast<std::uint32_t>(t)), face);
+  }
+
+  draco::Encoder encoder;
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, settings.position_bits);
+  encoder.SetSpeedOptions(settings.encoding_speed, settings.encoding_speed);
+  encoder.SetEncodingMethod(edgebreaker ? draco::MESH_EDGEBREAKER_ENCODING
+                                        : draco::MESH_SEQUENTIAL_ENCODING);
+  draco::EncoderBuffer buffer;
+  const draco::Status status = encoder.EncodeMeshToBuffer(draco_mesh, &buffer);
+  if (!status.ok()) return InternalError("Draco cannot encode the base mesh: " +
+                                         status.error_msg_string());
+
+  EncodedBaseMesh result;
+  result.position_bits = settings.position_bits;
+  result.bytes.assign(buffer.data(), buffer.data() + buffer.size());
+  MESHVID_ASSIGN_OR_RETURN(result.decoded, DecodeBaseMesh(result.bytes));
+  return result;
+}
+
+Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings) {
+  MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "base mesh"));
+  if (mesh.triangle_count() > kMaxBaseMeshTriangles ||
+      mesh.vertex_count() > 3 * std::size_t{kMaxBaseMeshTriangles}) {
+    return InvalidArgumentError("a base mesh may have at most " +
+                                std::to_string(kMaxBaseMeshTriangles) + " triangles, got " +
+                                std::to_string(mesh.triangle_count()));
+  }
+  if (settings.position_bits < 1 || settings.position_bits > 30) {
+    return InvalidArgumentError("base mesh position bits must be in 1..30, got " +
+                                std::to_string(settings.position_bits));
+  }
+  return Status::Ok();
+}
+
+/// Where Draco put each input vertex: the one decoded vertex within a quantisation step.
+/// Vertices that share a position with others (a contour's coincident vertices) have several
+/// candidates; they are told apart by the triangles around them (an input triangle whose
+/// other two corners are placed names the decoded triangle, and so its third corner) or by
+/// elimination (one candidate left untaken); coincident vertices nothing tells apart take
+/// free candidates that keep their triangles' orientation. False when that fails.
+bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int position_bits,
+                   std::vector<std::uint32_t>* vertex_in_decoded) {
+  constexpr std::uint32_t kUnplaced = ~0u;
+  const PointCloud cloud{decoded.positions};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
+  vertex_in_decoded->assign(mesh.vertex_count(), kUnplaced);
+  std::vector<char> taken(decoded.vertex_count(), 0);
+  std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;  // of the ambiguous ones
+  std::vector<std::pair<std::uint32_t, float>> near;  // (index, squared distance)
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    near.clear();
+    tree.radiusSearch(mesh.positions[v].data(), step * step, near, nanoflann::SearchParams());
+    if (near.empty()) return false;
+    if (near.size() == 1) {
+      if (taken[near[0].first]) return false;
+      taken[near[0].first] = 1;
+      (*vertex_in_decoded)[v] = near[0].first;
+      continue;
+    }
+    auto& list = candidates[static_cast<std::uint32_t>(v)];
+    for (const auto& item : near) list.push_back(item.first);
+  }
+  if (candidates.empty()) return true;
+  // Decoded directed edge -> the third corner of its triangle.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> third;
+  for (const Triangle& tri : decoded.triangles) {
+    for (int c = 0; c < 3; ++c) third[{tri[c], tri[(c + 1) % 3]}] = tri[(c + 2) % 3];
+  }
+  for (bool progress = true; progress && !candidates.empty();) {
+    progress = false;
+    for (const Triangle& tri : mesh.triangles) {
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t v = tri[(c + 2) % 3];
+        const std::uint32_t a = (*vertex_in_decoded)[tri[c]];
+        const std::uint32_t b = (*vertex_in_decoded)[tri[(c + 1) % 3]];
+        if ((*vertex_in_decoded)[v] != kUnplaced || a == kUnplaced || b == kUnplaced) continue;
+        const auto edge = third.find({a, b});
+        if (edge == third.end()) return false;
+        const std::vector<std::uint32_t>& list = candidates.at(v);
+        const std::uint32_t w = edge->second;
+        if (taken[w] || std::find(list.begin(), list.end(), w) == list.end()) return false;
+        taken[w] = 1;
+        (*vertex_in_decoded)[v] = w;
+        candidates.erase(v);
+        progress = true;
+      }
+    }
+    // A vertex with one candidate left untaken has it.
+    for (auto it = candidates.begin(); it != candidates.end();) {
+      std::uint32_t free_count = 0, last_free = 0;
+      for (std::uint32_t w : it->second) {
+        if (!taken[w]) ++free_count, last_free = w;
+      }
+      if (free_count != 1) {
+        ++it;
+        continue;
+      }
+      taken[last_free] = 1;
+      (*vertex_in_decoded)[it->first] = last_free;
+      it = candidates.erase(it);
+      progress = true;
+    }
+  }
+  // Left: clusters of coincident vertices no placed neighbour tells apart (a sliver whose
+  // corners all share one quantised position). Any untaken candidates decode to the same
+  // place; a search over them keeps each triangle's orientation.
+  std::vector<std::uint32_t> left;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> triangles_of;  // of the left vertices
+  for (const auto& entry : candidates) left.push_back(entry.first);
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      if (candidates.count(mesh.triangles[t][c])) triangles_of[mesh.triangles[t][c]].push_back(t);
+    }
+  }
+  auto consistent = [&](std::uint32_t v) {
+    for (std::uint32_t t : triangles_of[v]) {
+      const Triangle& tri = mesh.triangles[t];
+      const std::uint32_t a = (*vertex_in_decoded)[tri[0]], b = (*vertex_in_decoded)[tri[1]],
+                          c = (*vertex_in_decoded)[tri[2]];
+      if (a == kUnplaced || b == kUnplaced || c == kUnplaced) continue;
+      const auto edge = third.find({a, b});
+      if (edge == third.end() || edge->second != c) return false;
+    }
+    return true;
+  };
+  // Depth-first over `left` with an explicit stack (a recursion as deep as `left` is long
+  // overflows the stack on large ambiguous meshes): next_choice[i] is the index of the next
+  // candidate of left[i] to try.
+  int budget = 100000;  // assignments tried before giving up (the sequential coder then)
+  std::vector<std::size_t> next_choice(left.size(), 0);
+  std::size_t i = 0;
+  while (i < left.size()) {
+    const std::uint32_t v = left[i];
+    const std::vector<std::uint32_t>& choices = candidates.at(v);
+    if ((*vertex_in_decoded)[v] != kUnplaced) {  // back here after a failure further on
+      taken[(*vertex_in_decoded)[v]] = 0;
+      (*vertex_in_decoded)[v] = kUnplaced;
+    }
+    bool placed = false;
+    while (next_choice[i] < choices.size() && !placed) {
+      const std::uint32_t w = choices[next_choice[i]++];
+      if (taken[w]) continue;
+      if (--budget < 0) return false;
+      taken[w] = 1;
+      (*vertex_in_decoded)[v] = w;
+      placed = consistent(v);
+      if (!placed) {
+        taken[w] = 0;
+        (*vertex_in_decoded)[v] = kUnplaced;
+      }
+    }
+    if (placed) {
+      ++i;
+      continue;
+    }
+    if (i == 0) return false;
+    next_choice[i] = 0;
+    --i;
+  }
+  return true;
+}
+
+/// Finds where Draco put every input vertex and triangle (MatchVertices), and checks that the
+/// triangles are the same up to order and rotation. False (nothing filled) otherwise.
+bool MatchDecodedOrder(const TriangleMesh& mesh, int position_bits, EncodedBaseMesh* coded) {
+  const TriangleMesh& decoded = coded->decoded;
+  if (decoded.vertex_count() != mesh.vertex_count() ||
+      decoded.triangle_count() != mesh.triangle_count()) {
+    return false;
+  }
+  std::vector<std::uint32_t> vertex_in_decoded;
+  if (!MatchVertices(mesh, decoded, position_bits, &vertex_in_decoded)) return false;
+  // Triangles as rotated to start at their smallest decoded vertex.
+  auto key = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (b < a && b < c) return std::array<std::uint32_t, 3>{b, c, a};
+    if (c < a && c < b) return std::array<std::uint32_t, 3>{c, a, b};
+    return std::array<std::uint32_t, 3>{a, b, c};
+  };
+  std::map<std::array<std::uint32_t, 3>, std::uint32_t> decoded_triangles;
+  for (std::size_t t = 0; t < decoded.triangle_count(); ++t) {
+    const Triangle& tri = decoded.triangles[t];
+    decoded_triangles[key(tri[0], tri[1], tri[2])] = static_cast<std::uint32_t>(t);
+  }
+  std::vector<std::uint32_t> triangle_in_decoded(mesh.triangle_count());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    const auto it = decoded_triangles.find(key(vertex_in_decoded[tri[0]],
+                                               vertex_in_decoded[tri[1]],
+                                               vertex_in_decoded[tri[2]]));
+    if (it == decoded_triangles.end()) return false;
+    triangle_in_decoded[t] = it->second;
+  }
+  coded->vertex_in_decoded = std::move(vertex_in_decoded);
+  coded->triangle_in_decoded = std::move(triangle_in_decoded);
+  return true;
+}
+
+}  // namespace
+
+StatusOr<EncodedBaseMesh> EncodeBaseMesh(const TriangleMesh& mesh,
+                                         const BaseMeshEncoding& settings) {
+  MESHVID_RETURN_IF_ERROR(CheckSettings(mesh, settings));
+  if (settings.allow_reorder) return EncodeWith(mesh, settings, /*edgebreaker=*/true);
+  if (settings.try_edgebreaker) {
+    // A finer step parts vertices that one step could not tell apart.
+    const int finest = std::min(30, settings.position_bits + kEdgebreakerExtraBits);
+    for (BaseMeshEncoding finer = settings; finer.position_bits <= finest;
+         ++finer.position_bits) {
+      StatusOr<EncodedBaseMesh> small = EncodeWith(mesh, finer, /*edgebreaker=*/true);
+      if (small.ok() && MatchDecodedOrder(mesh, finer.position_bits, &*small)) return small;
+    }
+  }
+  return EncodeWith(mesh, settings, /*edgebreaker=*/false);
+}
+
+}  // namespace meshvid

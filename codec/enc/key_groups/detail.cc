@@ -1,0 +1,179 @@
+#include "codec/enc/key_groups/detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace meshvid {
+
+StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision,
+                                           std::span<const Eigen::Vector3f> positions,
+                                           std::span<const TriangleMesh> views,
+                                           const DetailOptions& options,
+                                           std::vector<float>* displacements) {
+  if (positions.size() != subdivision.base_vertex_count()) {
+    return InvalidArgumentError("posed base has " + std::to_string(positions.size()) +
+                                " vertices, the lattice " +
+                                std::to_string(subdivision.base_vertex_count()));
+  }
+  std::vector<Eigen::Vector3f> normals, origins, directions;
+  ComputeVertexNormals(positions, subdivision.base_triangles(), &normals);
+  EvaluateSampleFrames(subdivision, subdivision.levels(), positions, normals, &origins,
+                       &directions);
+  const std::size_t samples = origins.size();
+  std::vector<std::vector<float>> per_view(views.size());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    if (views[v].empty()) {
+      per_view[v].assign(samples, kNoHit);
+      continue;
+    }
+    MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<ShootingTarget> target,
+                             ShootingTarget::Create(views[v]));
+    target->ShootAll(origins, directions, options.shot, &per_view[v]);
+  }
+  displacements->assign(samples, kNoHit);
+  std::size_t hits = 0;
+  std::vector<float> found;
+  for (std::size_t i = 0; i < samples; ++i) {
+    found.clear();
+    for (const auto& view : per_view) {
+      if (!std::isnan(view[i])) found.push_back(view[i]);
+    }
+    if (found.empty()) continue;
+    // Eq. 4 with outlier rejection: average the hits near the views' median.
+    std::nth_element(found.begin(), found.begin() + found.size() / 2, found.end());
+    float median = found[found.size() / 2];
+    if (found.size() % 2 == 0) {
+      median = 0.5f * (median + *std::max_element(found.begin(), found.begin() + found.size() / 2));
+    }
+    double sum = 0;
+    int count = 0;
+    for (float d : found) {
+      if (std::abs(d - median) <= options.outlier_distance) sum += d, ++count;
+    }
+    (*displacements)[i] = count > 0 ? float(sum / count) : median;
+    ++hits;
+  }
+  return hits;
+}
+
+SampleGraph SampleGraph::Build(const RegularSubdivision& subdivision) {
+  const std::size_t samples = subdivision.samples().size();
+  std::vector<std::vector<std::uint32_t>> lists(samples);
+  for (const Triangle& t : subdivision.Triangles(subdivision.levels())) {
+    for (int c = 0; c < 3; ++c) {
+      lists[t[c]].push_back(t[(c + 1) % 3]);
+      lists[t[c]].push_back(t[(c + 2) % 3]);
+    }
+  }
+  SampleGraph graph;
+  graph.offsets.reserve(samples + 1);
+  graph.offsets.push_back(0);
+  for (auto& list : lists) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    graph.neighbours.insert(graph.neighbours.end(), list.begin(), list.end());
+    graph.offsets.push_back(static_cast<std::uint32_t>(graph.neighbours.size()));
+  }
+  return graph;
+}
+
+std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* last_measured,
+                                  std::vector<std::vector<float>>* frames) {
+  const std::size_t count = frames->size();
+  if (count == 0) return 0;
+  const std::size_t samples = (*frames)[0].size();
+  last_measured->resize(samples, kNoHit);
+  std::size_t filled = 0;
+  std::vector<std::vector<float>> result = *frames;
+  // Temporal and one-ring spatial candidates, from measurements only.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 4096), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      float before = (*last_measured)[i];
+      for (std::size_t f = 0; f < count; ++f) {
+        const float value = (*frames)[f][i];
+        if (!std::isnan(value)) {
+          before = value;
+          continue;
+        }
+        float after = kNoHit;
+        for (std::size_t g = f + 1; g < count; ++g) {
+          if (!std::isnan((*frames)[g][i])) {
+            after = (*frames)[g][i];
+            break;
+          }
+        }
+        double sum = 0;
+        int terms = 0;
+        if (!std::isnan(before)) sum += before, ++terms;
+        if (!std::isnan(after)) sum += after, ++terms;
+        double spatial = 0;
+        int neighbours = 0;
+        for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+          const float n = (*frames)[f][graph.neighbours[k]];
+          if (!std::isnan(n)) spatial += n, ++neighbours;
+        }
+        if (neighbours > 0) sum += spatial / neighbours, ++terms;
+        if (terms > 0) result[f][i] = float(sum / terms);
+      }
+    }
+  });
+  for (std::size_t f = 0; f < count; ++f) {
+    for (std::size_t i = 0; i < samples; ++i) {
+      if (!std::isnan((*frames)[f][i])) (*last_measured)[i] = (*frames)[f][i];
+    }
+  }
+  // What no measurement reaches: spread from filled neighbours, ring by ring (a multi-source
+  // breadth-first order, so each sample averages the neighbours of earlier rings).
+  std::vector<std::uint32_t> ring, next_ring;
+  std::vector<float> values;
+  std::vector<char> queued(samples);
+  for (std::size_t f = 0; f < count; ++f) {
+    std::vector<float>& frame = result[f];
+    ring.clear();
+    for (std::uint32_t i = 0; i < samples; ++i) {
+      queued[i] = !std::isnan(frame[i]);
+    }
+    for (std::uint32_t i = 0; i < samples; ++i) {
+      if (!queued[i]) continue;
+      for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+        const std::uint32_t n = graph.neighbours[k];
+        if (!queued[n]) queued[n] = 1, ring.push_back(n);
+      }
+    }
+    while (!ring.empty()) {
+      values.resize(ring.size());
+      for (std::size_t r = 0; r < ring.size(); ++r) {
+        double sum = 0;
+        int terms = 0;
+        const std::uint32_t i = ring[r];
+        for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+          const float n = frame[graph.neighbours[k]];
+          if (!std::isnan(n)) sum += n, ++terms;
+        }
+        values[r] = terms > 0 ? float(sum / terms) : 0.0f;
+      }
+      next_ring.clear();
+      for (std::size_t r = 0; r < ring.size(); ++r) {
+        const std::uint32_t i = ring[r];
+        frame[i] = values[r];
+        for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+          const std::uint32_t n = graph.neighbours[k];
+          if (!queued[n]) queued[n] = 1, next_ring.push_back(n);
+        }
+      }
+      ring.swap(next_ring);
+    }
+    for (std::size_t i = 0; i < samples; ++i) {
+      if (std::isnan(frame[i])) frame[i] = 0;  // a frame with no measurement at all
+      if (std::isnan((*frames)[f][i])) ++filled;
+    }
+  }
+  frames->swap(result);
+  return filled;
+}
+
+}  // namespace meshvid

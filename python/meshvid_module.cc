@@ -197,9 +197,9 @@ class ArrayFrameSource : public FrameSource {
 };
 
 py::bytes Encode(const py::sequence& frames, const std::string& path, int quality,
-                 const std::string& codec, int levels, double rebase_gain_db,
-                 int max_key_groups, double frame_rate, int gof_size, std::size_t base_vertices,
-                 int effort, const py::object& progress) {
+                 const std::string& codec, int levels, double rebase_gain_db, int max_key_groups,
+                 double frame_rate, int gof_size, std::size_t base_vertices, int effort,
+                 const py::object& progress, const py::object& tune) {
   std::vector<std::vector<TriangleMesh>> meshes;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const py::sequence views = py::reinterpret_borrow<py::sequence>(frames[f]);
@@ -230,6 +230,16 @@ py::bytes Encode(const py::sequence& frames, const std::string& path, int qualit
   options.gof_size = gof_size;
   options.base_vertices = base_vertices;
   options.effort = effort;
+  // The internals by key, as `meshvid encode --tune KEY=VALUE` sets them (docs/tuning.md).
+  if (!tune.is_none()) {
+    for (const auto& [key, value] : py::cast<py::dict>(tune)) {
+      const std::string text = py::isinstance<py::bool_>(value)
+                                   ? (value.cast<bool>() ? "true" : "false")
+                                   : py::str(value).cast<std::string>();
+      const Status set = SetTuning(options.tuning, py::str(key).cast<std::string>(), text);
+      if (!set.ok()) Raise(set);
+    }
+  }
   options.metadata_json = R"({"encoder":"meshvid python"})";
   ArrayFrameSource source(std::move(meshes), frame_rate);
   std::ostringstream out;
@@ -357,12 +367,13 @@ PYBIND11_MODULE(meshvid, m) {
 
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
         py::arg("codec") = "hevc", py::arg("levels") = 2,
-        py::arg("rebase_gain_db") = kDefaultRebaseGainDb,
-        py::arg("max_key_groups") = 0, py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32,
-        py::arg("base_vertices") = 2000, py::arg("effort") = 4, py::arg("progress") = py::none(),
+        py::arg("rebase_gain_db") = kDefaultRebaseGainDb, py::arg("max_key_groups") = 0,
+        py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32, py::arg("base_vertices") = 2000,
+        py::arg("effort") = 4, py::arg("progress") = py::none(), py::arg("tune") = py::none(),
         "Encodes a capture: `frames` is a list of frames, each a list of views "
         "(vertices (V, 3), triangles (F, 3)) in world coordinates. Returns the .mvid bytes "
-        "(also written to `path` if given). Options as `meshvid encode`'s. `progress`, if "
+        "(also written to `path` if given). Options as `meshvid encode`'s; `tune`, a dict of "
+        "the encoder's internals by key (docs/tuning.md), as its --tune. `progress`, if "
         "given, is called as progress(stage, done, total); returning False cancels "
         "(meshvid.Error). Ctrl-C interrupts.");
 }

@@ -451,9 +451,10 @@ TEST(BenchRunnerTest, SequencesRigsAndListsAreParsed) {
   EXPECT_NE(bad.status().message().find("--bits '8,,12'"), std::string::npos);
   EXPECT_FALSE(ParseIntList("31", 1, 30, "--bits").ok());
 
-  auto extra = ParseEncodeArgs("  --rebase-gain 4\t--node-spacing 0.05 ");
+  auto extra = ParseEncodeArgs("  --rebase-gain 4\t--tune node_spacing=0.05 ");
   ASSERT_TRUE(extra.ok()) << extra.status().ToString();
-  EXPECT_EQ(*extra, (std::vector<std::string>{"--rebase-gain", "4", "--node-spacing", "0.05"}));
+  EXPECT_EQ(*extra,
+            (std::vector<std::string>{"--rebase-gain", "4", "--tune", "node_spacing=0.05"}));
   ASSERT_TRUE(ParseEncodeArgs("").ok());
   EXPECT_TRUE(ParseEncodeArgs("")->empty());
   for (const char* reserved : {"-o x.mvid", "--quality 20", "--quality=20", "--frames 0:5", "-q"}) {

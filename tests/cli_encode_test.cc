@@ -11,12 +11,33 @@
 #include <nlohmann/json.hpp>
 
 #include "codec/dec/mvid_decoder.h"
+#include "codec/enc/options.h"
 #include "tests/test_util.h"
 #include "tools/sim/ground_truth.h"
 #include "tools/sim/scenes.h"
 
 namespace meshvid {
 namespace {
+
+TEST(EncodeCliTest, HelpListsTheUsersOptionsAndTuneHelpEveryKnob) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  testing::CliRun run = testing::RunMeshvid("encode --help", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // One line per option starts with two spaces and a dash; the internals are behind --tune.
+  int options = 0;
+  for (std::size_t at = 0; (at = run.out.find("\n  -", at)) != std::string::npos; ++at) ++options;
+  EXPECT_LE(options, 20) << run.out;
+  EXPECT_NE(run.out.find("--tune"), std::string::npos);
+  EXPECT_EQ(run.out.find("--node-spacing"), std::string::npos);
+  // `--tune help` needs no capture: it lists every key with its default and range.
+  run = testing::RunMeshvid("encode --tune help", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const TuningKnob& knob : TuningKnobs()) {
+    EXPECT_NE(run.out.find(std::string("  ") + knob.key + " = "), std::string::npos) << knob.key;
+  }
+  EXPECT_NE(run.out.find("node_spacing = 0  (double, >= 0)"), std::string::npos) << run.out;
+}
 
 TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   MESHVID_REQUIRE_CLI();
@@ -35,22 +56,45 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
                             dir);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("--quality"), std::string::npos) << run.err;
-  // The library names EncoderOptions' fields (proxy_fraction); the command, its flags.
+  // The library names EncoderTuning's fields (tuning.proxy_fraction); the command, --tune KEY.
   run = testing::RunMeshvid(
-      "encode '" + dir.File("cap/manifest.json") + "' -o '" + out + "' --proxy-fraction 2 -q", dir);
+      "encode '" + dir.File("cap/manifest.json") + "' -o '" + out + "' --tune proxy_fraction=2 -q",
+      dir);
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("--proxy-fraction must be in (0, 1]"), std::string::npos) << run.err;
-  EXPECT_EQ(run.err.find("proxy_fraction"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("--tune proxy_fraction must be in [0.001, 1]"), std::string::npos)
+      << run.err;
+  EXPECT_EQ(run.err.find("tuning.proxy_fraction"), std::string::npos) << run.err;
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
-                                "' --base-voxel-scale 0 -q",
+                                "' --tune base_voxel_scale=0 -q",
                             dir);
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("--base-voxel-scale must be in [0.25, 8]"), std::string::npos)
+  EXPECT_NE(run.err.find("--tune base_voxel_scale must be in [0.25, 8]"), std::string::npos)
+      << run.err;
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --tune deform_rigid_group_factor=-1 -q",
+                            dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--tune deform_rigid_group_factor must be >= 0"), std::string::npos)
       << run.err;
   run = testing::RunMeshvid(
-      "encode '" + dir.File("cap/manifest.json") + "' -o '" + out + "' --rigid-groups -1 -q", dir);
-  EXPECT_NE(run.exit_code, 0);  // refused while parsing, as every range-checked flag
-  EXPECT_NE(run.err.find("--rigid-groups"), std::string::npos) << run.err;
+      "encode '" + dir.File("cap/manifest.json") + "' -o '" + out + "' --tune rigid_groups=1 -q",
+      dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("unknown tuning key 'rigid_groups'"), std::string::npos) << run.err;
+  // A JSON file of knobs is read as KEY=VALUE entries are, and checked the same.
+  testing::WriteFile(dir.File("tune.json"), R"({"node_spacing": 0.05, "window": 1})");
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --tune '" + dir.File("tune.json") + "' -q",
+                            dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--tune window must be >= 2"), std::string::npos) << run.err;
+  // A flag that became a --tune key is named with its key.
+  run = testing::RunMeshvid(
+      "encode '" + dir.File("cap/manifest.json") + "' -o '" + out + "' --rigid-groups 1 -q", dir);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--rigid-groups is now --tune deform_rigid_group_factor=VALUE"),
+            std::string::npos)
+      << run.err;
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
                                 "' --codec mpeg2 -q",
                             dir);
@@ -236,10 +280,11 @@ TEST_F(ArmBlockEncode, TheBlockAndTheArmEachMoveAsOneRigidGroup) {
   const std::string mvid = dir_->File("arm-deform.mvid");
   const testing::CliRun enc = testing::RunMeshvid(
       "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
-          "' --rigid-groups 1 --rebase-gain 4 --summary-json '" + dir_->File("deform.json") + "'",
+          "' --tune deform_rigid_group_factor=1 --rebase-gain 4 --summary-json '" +
+          dir_->File("deform.json") + "'",
       *dir_);
   ASSERT_EQ(enc.exit_code, 0) << enc.err;
-  EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;  // --rigid-groups is read
+  EXPECT_EQ(enc.err.find("warning"), std::string::npos) << enc.err;
   // The summary speaks of the deformation's nodes and groups.
   EXPECT_NE(enc.err.find("(deformation nodes) moving as"), std::string::npos) << enc.err;
   const nlohmann::json summary =
@@ -252,7 +297,7 @@ TEST_F(ArmBlockEncode, TheBlockAndTheArmEachMoveAsOneRigidGroup) {
     EXPECT_EQ(group["cut_seen_through"].get<double>() == -1, ended_by_capture);
     EXPECT_EQ(group["cut_farthest_growth"].get<double>() == -1, ended_by_capture);
     EXPECT_EQ(group["cut_loss_db"].get<double>() == -1, ended_by_capture);
-    // Tracked forwards only (no --deform-backward): every key group starts at its key frame.
+    // Tracked forwards only (deform_backward_frames 0): every key group starts at its key frame.
     EXPECT_EQ(group["key_frame"].get<int>(), group["first_frame"].get<int>());
   }
   EXPECT_EQ(summary["key_groups"].back()["cut_farthest_growth"].get<double>(), -1);

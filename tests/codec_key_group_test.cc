@@ -487,7 +487,7 @@ TEST(KeyGroups, SurfaceLeftFarFromEveryDataPointEndsTheKeyGroup) {
 }
 
 /// TestOptions with key frames `frames_back` frames after their key groups' first
-/// (--deform-backward).
+/// (EncoderTuning::deform_backward_frames).
 EncoderOptions DeformBackwardOptions(int frames_back) {
   EncoderOptions options = TestOptions();
   options.tuning.deform_backward_frames = frames_back;

@@ -1,8 +1,11 @@
 #include "codec/enc/options.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <string>
+#include <system_error>
+#include <type_traits>
 
 #include "codec/common/subdivision.h"
 
@@ -22,6 +25,119 @@ int QualityToQp(VideoCodec codec, int quality) {
   }
 }
 
+namespace {
+
+template <typename T>
+constexpr const char* KnobType() {
+  if constexpr (std::is_same_v<T, bool>) return "bool";
+  if constexpr (std::is_same_v<T, int>) return "int";
+  if constexpr (std::is_same_v<T, std::size_t>) return "size";
+  return "double";
+}
+
+constexpr TuningKnob kKnobs[] = {
+#define MESHVID_KNOB_ENTRY(type, name, value, lowest, highest, flag, help) \
+  {#name, KnobType<type>(), static_cast<double>(value), lowest, highest, flag, help},
+    MESHVID_ENCODER_TUNING(MESHVID_KNOB_ENTRY)
+#undef MESHVID_KNOB_ENTRY
+};
+
+/// A number as SetTuning reads it back: the shortest text that round-trips.
+std::string NumberText(double value) {
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof(text), value);
+  return error == std::errc() ? std::string(text, end) : std::to_string(value);
+}
+
+}  // namespace
+
+std::string TuningRangeText(const TuningKnob& knob) {
+  if (std::string_view(knob.type) == "bool") return "true, false";
+  if (knob.highest >= kNoLimit) return ">= " + NumberText(knob.lowest);
+  return "[" + NumberText(knob.lowest) + ", " + NumberText(knob.highest) + "]";
+}
+
+namespace {
+
+const TuningKnob* FindKnob(std::string_view key) {
+  for (const TuningKnob& knob : kKnobs) {
+    if (key == knob.key) return &knob;
+  }
+  return nullptr;
+}
+
+/// kInvalidArgument naming the knob unless `value` is finite and in its range.
+Status CheckKnob(const TuningKnob& knob, double value) {
+  if (std::isfinite(value) && value >= knob.lowest && value <= knob.highest) return Status::Ok();
+  return InvalidArgumentError(std::string("tuning.") + knob.key + " must be " +
+                              (knob.highest >= kNoLimit ? "" : "in ") + TuningRangeText(knob));
+}
+
+template <typename T>
+Status ParseKnob(const TuningKnob& knob, std::string_view text, T* out) {
+  const auto refuse = [&] {
+    return InvalidArgumentError(std::string("tuning.") + knob.key + ": '" + std::string(text) +
+                                "' is not " +
+                                (std::is_same_v<T, bool>     ? "true or false"
+                                 : std::is_same_v<T, double> ? "a number"
+                                                             : "a whole number"));
+  };
+  if constexpr (std::is_same_v<T, bool>) {
+    if (text == "true" || text == "1")
+      *out = true;
+    else if (text == "false" || text == "0")
+      *out = false;
+    else
+      return refuse();
+    return Status::Ok();
+  } else {
+    T value{};
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size()) return refuse();
+    if (Status in_range = CheckKnob(knob, static_cast<double>(value)); !in_range.ok()) {
+      return in_range;
+    }
+    *out = value;
+    return Status::Ok();
+  }
+}
+
+}  // namespace
+
+std::span<const TuningKnob> TuningKnobs() { return kKnobs; }
+
+Status SetTuning(EncoderTuning& tuning, std::string_view key, std::string_view value) {
+#define MESHVID_SET_KNOB(type, name, default_value, lowest, highest, flag, help) \
+  if (key == #name) return ParseKnob(*FindKnob(#name), value, &tuning.name);
+  MESHVID_ENCODER_TUNING(MESHVID_SET_KNOB)
+#undef MESHVID_SET_KNOB
+  return InvalidArgumentError("unknown tuning key '" + std::string(key) +
+                              "' (TuningKnobs lists them: docs/tuning.md)");
+}
+
+std::string TuningValue(const EncoderTuning& tuning, std::string_view key) {
+#define MESHVID_KNOB_VALUE(type, name, default_value, lowest, highest, flag, help)   \
+  if (key == #name) {                                                                \
+    if constexpr (std::is_same_v<type, bool>) return tuning.name ? "true" : "false"; \
+    return NumberText(static_cast<double>(tuning.name));                             \
+  }
+  MESHVID_ENCODER_TUNING(MESHVID_KNOB_VALUE)
+#undef MESHVID_KNOB_VALUE
+  return {};
+}
+
+std::string TuningTableMarkdown() {
+  const EncoderTuning defaults;
+  std::string table =
+      "| key | default | range | former flag | what it does |\n"
+      "|---|---|---|---|---|\n";
+  for (const TuningKnob& knob : kKnobs) {
+    table += std::string("| `") + knob.key + "` | " + TuningValue(defaults, knob.key) + " | " +
+             TuningRangeText(knob) + " | `" + knob.former_flag + "` | " + knob.help + " |\n";
+  }
+  return table;
+}
+
 Status CheckOptions(const EncoderOptions& o) {
   auto bad = [](const std::string& what) { return InvalidArgumentError(what); };
   if (o.levels < 0 || o.levels > RegularSubdivision::kMaxLevels) {
@@ -30,70 +146,18 @@ Status CheckOptions(const EncoderOptions& o) {
   if (o.quality < 0 || o.quality > 100) return bad("quality must be in 0..100");
   if (o.effort < 0 || o.effort > 9) return bad("effort must be in 0..9");
   if (o.gof_size < 1 || o.gof_size > 1024) return bad("gof_size must be in 1..1024");
-  if (o.tuning.window < 2) return bad("tuning.window must be at least 2 frames");
   if (!(o.rebase_gain_db >= 0 && o.rebase_gain_db <= 100)) {
     return bad("rebase_gain_db must be in [0, 100] dB");
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
-  if (o.tuning.deform_backward_frames < 0) {
-    return bad("tuning.deform_backward_frames must be >= 0");
-  }
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
-  if (!(o.tuning.base_max_extension >= 0) || !std::isfinite(o.tuning.base_max_extension)) {
-    return bad("tuning.base_max_extension must be finite and >= 0");
+#define MESHVID_CHECK_KNOB(type, name, default_value, lowest, highest, flag, help)       \
+  if (Status in_range = CheckKnob(*FindKnob(#name), static_cast<double>(o.tuning.name)); \
+      !in_range.ok()) {                                                                  \
+    return in_range;                                                                     \
   }
-  if (!(o.tuning.transform_step >= 0) || !std::isfinite(o.tuning.transform_step)) {
-    return bad("tuning.transform_step must be finite and >= 0 (0: from the size)");
-  }
-  if (!(o.tuning.base_voxel_scale >= 0.25 && o.tuning.base_voxel_scale <= 8)) {
-    return bad("tuning.base_voxel_scale must be in [0.25, 8]");
-  }
-  if (o.tuning.base_fusion_points < 100) {
-    return bad("tuning.base_fusion_points must be at least 100");
-  }
-  if (!(o.tuning.proxy_fraction > 0 && o.tuning.proxy_fraction <= 1)) {
-    return bad("tuning.proxy_fraction must be in (0, 1]");
-  }
-  if (!(o.tuning.max_angle_degrees > 0 && o.tuning.max_angle_degrees < 90)) {
-    return bad("tuning.max_angle_degrees must be in (0, 90) degrees");
-  }
-  if (o.tuning.base_position_bits < 8 || o.tuning.base_position_bits > 24) {
-    return bad("tuning.base_position_bits must be in 8..24");
-  }
-  if (!(o.tuning.reacquire_below >= 0 && o.tuning.reacquire_below <= 1) ||
-      !(o.tuning.reacquire_gain >= 0 && o.tuning.reacquire_gain <= 1)) {
-    return bad("tuning.reacquire_below and tuning.reacquire_gain must be in [0, 1]");
-  }
-  if (!(o.tuning.base_max_edge >= 0) || !(o.tuning.proxy_max_edge >= 0)) {
-    return bad("tuning.base_max_edge and tuning.proxy_max_edge must be >= 0");
-  }
-  if (!(o.tuning.node_spacing >= 0) || !(o.tuning.deform_rigidity > 0) ||
-      !(o.tuning.deform_point_weight >= 0)) {
-    return bad(
-        "tuning.node_spacing and tuning.deform_point_weight must be >= 0 and "
-        "tuning.deform_rigidity positive");
-  }
-  if (!(o.tuning.deform_rigid_group_factor >= 0)) {
-    return bad("tuning.deform_rigid_group_factor must be >= 0");
-  }
-  if (!(o.tuning.deform_coarse_stiffness >= 1 && o.tuning.deform_coarse_stiffness <= 1000)) {
-    return bad("tuning.deform_coarse_stiffness must be in [1, 1000]");
-  }
-  if (o.tuning.deform_iterations < 1 || o.tuning.deform_first_iterations < 1) {
-    return bad("tuning.deform_iterations and tuning.deform_first_iterations must be at least 1");
-  }
-  if (o.tuning.reacquire_min_vertices < 3) {
-    return bad("tuning.reacquire_min_vertices must be at least 3");
-  }
-  if (o.tuning.farthest_growth < 0) return bad("tuning.farthest_growth must not be negative");
-  if (o.tuning.max_distance < 0 || o.tuning.tolerance < 0 || o.tuning.detail_max_distance < 0 ||
-      o.tuning.outlier_distance < 0 || o.tuning.base_max_error < 0 ||
-      o.tuning.reacquire_max_distance < 0) {
-    return bad(
-        "tuning.max_distance, tuning.tolerance, tuning.detail_max_distance, "
-        "tuning.outlier_distance, tuning.base_max_error and tuning.reacquire_max_distance must "
-        "not be negative (0 derives them from the data)");
-  }
+  MESHVID_ENCODER_TUNING(MESHVID_CHECK_KNOB)
+#undef MESHVID_CHECK_KNOB
   return Status::Ok();
 }
 

@@ -178,6 +178,19 @@ def test_encode_from_arrays_round_trips(tmp_path):
         assert abs(np.median(radii) - 1.0) < 0.02
 
 
+def test_encode_takes_the_encoders_internals_by_key():
+    vertices, triangles = sphere(1.0)
+    frames = [[(vertices, triangles)]] * 2
+    plain = meshvid.encode(frames)
+    # Explicit defaults give the same file; a changed knob another one.
+    assert meshvid.encode(frames, tune={"base_ahead": True, "window": 256}) == plain
+    assert meshvid.encode(frames, tune={"base_position_bits": 14}) != plain
+    with pytest.raises(meshvid.Error, match="unknown tuning key 'nodes'"):
+        meshvid.encode(frames, tune={"nodes": 3})
+    with pytest.raises(meshvid.Error, match="proxy_fraction must be in"):
+        meshvid.encode(frames, tune={"proxy_fraction": 2})
+
+
 def test_encode_can_be_cancelled_and_callback_errors_propagate():
     vertices, triangles = sphere(1.0)
     frames = [[(vertices, triangles)]] * 2

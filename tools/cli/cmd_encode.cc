@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -31,53 +32,35 @@ struct EncodeArguments {
   std::string codec = "hevc";
   std::string frames;
   std::string summary_json;
+  std::vector<std::string> tune;  ///< --tune: KEY=VALUE, FILE.json or help
   bool quiet = false;
   EncoderOptions options;
 };
 
 /// The encoder's messages name EncoderOptions' fields ("levels must be in 0..4"); the command
 /// line's user knows them by their flags. Field names with an underscore become their flag
-/// wherever they occur; plain words (quality, levels, window, ...) only as the message's first.
+/// wherever they occur; plain words (quality, levels, ...) only as the message's first. The
+/// internals (tuning.KEY) are set with `--tune KEY=VALUE`.
 Status WithFlagNames(const Status& status) {
   static constexpr std::pair<std::string_view, std::string_view> kFlags[] = {
       {"quality", "--quality"},
       {"levels", "--levels"},
       {"effort", "--effort"},
       {"gof_size", "--gof"},
-      {"window", "--window"},
-      {"base_fusion_points", "--base-fusion-points"},
-      {"base_voxel_scale", "--base-voxel-scale"},
-      {"base_ahead", "--base-ahead"},
-      {"base_max_extension", "--base-extension"},
       {"rebase_gain_db", "--rebase-gain"},
       {"max_key_groups", "--max-key-groups"},
-      {"farthest_growth", "--farthest-growth"},
       {"base_vertices", "--base-vertices"},
-      {"base_max_error", "--base-max-error"},
-      {"base_max_normal_deviation_degrees", "--base-max-normal-deviation"},
-      {"base_max_edge", "--base-max-edge"},
-      {"proxy_max_edge", "--proxy-max-edge"},
-      {"base_position_bits", "--base-bits"},
-      {"transform_step", "--transform-step"},
-      {"tolerance", "--tol"},
-      {"reacquire_below", "--reacquire-below"},
-      {"reacquire_gain", "--reacquire-gain"},
-      {"reacquire_min_vertices", "--reacquire-min-vertices"},
-      {"reacquire_max_distance", "--reacquire-distance"},
-      {"proxy_fraction", "--proxy-fraction"},
-      {"deform_rigid_group_factor", "--rigid-groups"},
-      {"deform_iterations", "--deform-iterations"},
-      {"deform_first_iterations", "--deform-first-iterations"},
-      {"deform_coarse_stiffness", "--coarse-stiffness"},
-      {"max_distance", "--max-distance"},
-      {"max_angle_degrees", "--max-angle"},
-      {"detail_max_distance", "--detail-distance"},
-      {"outlier_distance", "--outlier-distance"},
   };
   if (status.code() != StatusCode::kInvalidArgument) return status;
-  // Internals are named tuning.FIELD; their flags do not say "tuning".
   std::string in = status.message();
-  for (std::size_t at; (at = in.find("tuning.")) != std::string::npos;) in.erase(at, 7);
+  // "tuning.KEY" (not "docs/tuning.md") becomes "--tune KEY".
+  for (std::size_t at = 0; (at = in.find("tuning.", at)) != std::string::npos;) {
+    if (at > 0 && in[at - 1] != ' ' && in[at - 1] != '(') {
+      at += 7;
+      continue;
+    }
+    in.replace(at, 7, "--tune ");
+  }
   const auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   std::string out;
   for (std::size_t i = 0; i < in.size();) {
@@ -97,6 +80,62 @@ Status WithFlagNames(const Status& status) {
     i = end;
   }
   return {status.code(), out};
+}
+
+/// The knobs as `--tune help` prints them: key, default, range, then what each does.
+std::string TuningHelp() {
+  const EncoderTuning defaults;
+  std::string text =
+      "The encoder's internals, set with --tune KEY=VALUE (or a JSON file of them). Lengths\n"
+      "are in scene units; 0 derives a length from frame 0's size. Every default was chosen by\n"
+      "measurement (bench/); change them to experiment, not to use the codec.\n\n";
+  for (const TuningKnob& knob : TuningKnobs()) {
+    text += std::string("  ") + knob.key + " = " + TuningValue(defaults, knob.key) + "  (" +
+            knob.type + ", " + TuningRangeText(knob) + ")\n";
+    // The help, wrapped at 90 columns under the key.
+    std::string line = "     ";
+    std::istringstream words(knob.help);
+    for (std::string word; words >> word;) {
+      if (line.size() + 1 + word.size() > 90) {
+        text += line + "\n";
+        line = "     ";
+      }
+      line += " " + word;
+    }
+    text += line + "\n";
+  }
+  return text;
+}
+
+/// Applies the --tune entries in order: KEY=VALUE, or a JSON file holding an object of them.
+Status ApplyTune(const std::vector<std::string>& entries, EncoderTuning& tuning) {
+  for (const std::string& entry : entries) {
+    const std::size_t equals = entry.find('=');
+    if (equals != std::string::npos) {
+      const Status set = SetTuning(tuning, entry.substr(0, equals), entry.substr(equals + 1));
+      if (!set.ok()) return WithFlagNames(set);
+      continue;
+    }
+    std::ifstream file(entry);
+    if (!file) {
+      return InvalidArgumentError("--tune: '" + entry +
+                                  "' is neither KEY=VALUE nor a readable JSON file");
+    }
+    const nlohmann::json object = nlohmann::json::parse(file, nullptr, /*allow_exceptions=*/false);
+    if (!object.is_object()) {
+      return InvalidArgumentError("--tune " + entry + ": not a JSON object of KEY: VALUE");
+    }
+    for (const auto& [key, value] : object.items()) {
+      if (!value.is_number() && !value.is_boolean() && !value.is_string()) {
+        return InvalidArgumentError("--tune " + entry + ": " + key +
+                                    " must be a number or true/false");
+      }
+      const std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+      const Status set = SetTuning(tuning, key, text);
+      if (!set.ok()) return WithFlagNames(set).WithContext("--tune " + entry);
+    }
+  }
+  return Status::Ok();
 }
 
 /// The file's rate at the capture's frame rate.
@@ -231,6 +270,9 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
 }
 
 int RunEncode(EncodeArguments args) {
+  if (const Status tuned = ApplyTune(args.tune, args.options.tuning); !tuned.ok()) {
+    return ReportError(tuned);
+  }
   const std::optional<VideoCodec> codec = ParseVideoCodec(args.codec);
   if (!codec) {
     return ReportError(InvalidArgumentError("--codec: unknown codec '" + args.codec +
@@ -286,6 +328,19 @@ int RunEncode(EncodeArguments args) {
 
 }  // namespace
 
+std::string FormerTuningFlagHint(const std::vector<std::string>& args) {
+  std::string hint;
+  for (const std::string& arg : args) {
+    for (const TuningKnob& knob : TuningKnobs()) {
+      if (arg == knob.former_flag) {
+        hint +=
+            std::string(hint.empty() ? "" : "; ") + arg + " is now --tune " + knob.key + "=VALUE";
+      }
+    }
+  }
+  return hint;
+}
+
 void AddEncodeCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<EncodeArguments>();
   EncoderOptions& o = args->options;
@@ -316,166 +371,38 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--gof", o.gof_size, "Frames per group (random-access unit)")
       ->capture_default_str();
-  cmd->add_option("--window", o.tuning.window,
-                  "Most displacement frames measured and filled together (before and after in "
-                  "time), in whole groups of frames (--gof)")
-      ->capture_default_str();
-  cmd->add_option("--base-fusion-points", o.tuning.base_fusion_points,
-                  "Points a key frame's first fusion keeps for its base (fewer: faster; a base "
-                  "that explains under 75% of its frame is fused again from up to 150000)")
-      ->capture_default_str();
-  cmd->add_option("--base-ahead", o.tuning.base_ahead,
-                  "After a key group of one frame, make the next two frames' bases on threads "
-                  "of their own meanwhile (the same file; faster where the subject moves fast)")
-      ->capture_default_str();
-  cmd->add_option("--base-voxel-scale", o.tuning.base_voxel_scale,
-                  "Voxel of a key frame's fusion, as a multiple of the size derived from the "
-                  "views (2: about twice as fast, a coarser and less accurate base)")
-      ->capture_default_str();
-  cmd->add_option("--base-extension", o.tuning.base_max_extension,
-                  "Farthest a key frame's fused base reaches past the edge of the data, in the "
-                  "views' sample spacings (0: as far as the coarse fusion's volume reaches)")
-      ->capture_default_str();
-  cmd->add_option("--free-space", o.tuning.seen_free_space,
-                  "Use the capture's calibrated cameras (intrinsics and poses): a key frame's "
-                  "base ends where a camera saw through it (a sheet's open edge), and a key "
-                  "group ends where its tracked surface lies where a camera saw through")
-      ->capture_default_str();
-  cmd->add_option("--rebase-gain", o.rebase_gain_db,
-                  "Start a new key group (a fresh base fused from that frame) only where it is "
-                  "estimated to gain more than this D1, in dB, over the tracked base: from the "
-                  "captured points the tracked base's displacements cannot reach and its "
-                  "surface lying where a camera saw through (--free-space). Given at quality "
-                  "40; doubled every 20 quality steps below, halved every 20 above. Smaller: "
-                  "more key groups, closer to per-frame fusion; 0: a new key group wherever "
-                  "tracking loses anything")
+  cmd->add_option(
+         "--rebase-gain", o.rebase_gain_db,
+         "Start a new key group (a fresh base fused from that frame) only where it is "
+         "estimated to gain more than this D1, in dB, over the tracked base: from the "
+         "captured points the tracked base's displacements cannot reach and its "
+         "surface lying where a camera saw through (--tune seen_free_space). Given at quality "
+         "40; doubled every 20 quality steps below, halved every 20 above. Smaller: "
+         "more key groups, closer to per-frame fusion; 0: a new key group wherever "
+         "tracking loses anything")
       ->capture_default_str();
   cmd->add_option("--max-key-groups", o.max_key_groups,
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
                   "capture (for editing), 0: no limit")
       ->capture_default_str();
-  cmd->add_option("--farthest-growth", o.tuning.farthest_growth,
-                  "Start a new key group where some part of the tracked surface lies farther "
-                  "from every captured point than at the key frame by more than this, in data "
-                  "units: a piece the motion threw where no view contradicts it (0: "
-                  "--max-distance)")
-      ->capture_default_str();
+  cmd->add_option("--tune", args->tune,
+                  "Set an internal of the encoder: KEY=VALUE, or a JSON file of them "
+                  "({\"node_spacing\": 0.03}); repeatable, later ones win. `--tune help` "
+                  "lists every key with its default and range (docs/tuning.md)")
+      ->type_name("KEY=VALUE|FILE.json|help")
+      ->expected(1)
+      ->take_all()
+      ->trigger_on_parse()
+      ->each([](const std::string& entry) {
+        if (entry != "help") return;
+        std::fputs(TuningHelp().c_str(), stdout);
+        throw CLI::Success();
+      });
   cmd->add_option("--base-mesh", args->base_mesh,
                   "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "
                   "first frame, instead of fusing that frame's views");
   cmd->add_option("--base-vertices", o.base_vertices,
                   "Vertices of the automatic base mesh after decimation")
-      ->capture_default_str();
-  cmd->add_option("--base-max-error", o.tuning.base_max_error,
-                  "Largest surface change a decimation step may make (0: 1% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--base-max-normal-deviation", o.tuning.base_max_normal_deviation_degrees,
-                  "Largest normal change of a decimation step, degrees")
-      ->capture_default_str();
-  cmd->add_option("--base-max-edge", o.tuning.base_max_edge,
-                  "Longest edge the base decimation leaves, so the base can bend where the "
-                  "subject does (0: 3% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--base-bits", o.tuning.base_position_bits,
-                  "Draco position quantisation of the base meshes, bits per coordinate "
-                  "(8..24; the displacements correct what it moves along the normals)")
-      ->capture_default_str();
-  cmd->add_option("--transform-step", o.tuning.transform_step,
-                  "Quantisation step of the motion's translations, in scene units (0: 1/8192 "
-                  "of the size); rotations are quantised to move no point of the capture more")
-      ->capture_default_str();
-  cmd->add_option("--tol", o.tuning.tolerance,
-                  "Tracking tolerance: the finest correspondence radius is twice this, and "
-                  "--rigid-groups counts in it (0: 0.5% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--reacquire-below", o.tuning.reacquire_below,
-                  "With --deform-reacquire, share of a part's vertices finding data below which "
-                  "the tracker searches for it again (0: never)")
-      ->capture_default_str();
-  cmd->add_option("--reacquire-gain", o.tuning.reacquire_gain,
-                  "Share more of a part's vertices that must find data at a re-acquired pose")
-      ->capture_default_str();
-  cmd->add_option("--reacquire-min-vertices", o.tuning.reacquire_min_vertices,
-                  "Smallest part (vertices) searched for again alone")
-      ->capture_default_str();
-  cmd->add_option("--reacquire-distance", o.tuning.reacquire_max_distance,
-                  "Widest closest-point radius a lost part is searched within (0: 25% of the "
-                  "size)")
-      ->capture_default_str();
-  cmd->add_option("--node-spacing", o.tuning.node_spacing,
-                  "Distance between the deformation's nodes along the surface "
-                  "(0: 4% of the size)")
-      ->capture_default_str()
-      ->check(AtLeastZero());
-  cmd->add_option("--rigidity", o.tuning.deform_rigidity,
-                  "Weight of neighbouring nodes agreeing on each other's "
-                  "positions, per vertex a node carries")
-      ->capture_default_str()
-      ->check(AboveZero());
-  cmd->add_option("--coarse-stiffness", o.tuning.deform_coarse_stiffness,
-                  "On a key group's second frame (no velocity to predict its "
-                  "motion from yet), the rigidity's multiplier at the coarsest correspondence "
-                  "radius, falling geometrically to 1 at the finest: a part that moved far first "
-                  "moves as a whole, then bends. The frame is also solved at 1 throughout, and "
-                  "the solution the next frame is tracked better from is kept (1: one solve)")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 1000.0));
-  cmd->add_option("--point-weight", o.tuning.deform_point_weight,
-                  "Weight of the point-to-point distance beside the "
-                  "point-to-plane one")
-      ->capture_default_str()
-      ->check(AtLeastZero());
-  cmd->add_option("--rigid-groups", o.tuning.deform_rigid_group_factor,
-                  "Join neighbouring nodes that move as one rigid body through "
-                  "a key group (one rigid transform poses each node's vertices within this "
-                  "many tolerances, RMS, in every frame) and give them that transform (0: off)")
-      ->capture_default_str()
-      ->check(AtLeastZero());
-  cmd->add_option("--deform-fused", o.tuning.deform_track_fused,
-                  "Track each frame to its views fused into a closed surface "
-                  "instead of to the views themselves")
-      ->capture_default_str();
-  cmd->add_option("--deform-reacquire", o.tuning.deform_reacquire,
-                  "Search a part the tracking lost again over the whole frame "
-                  "as one rigid body (within --reacquire-distance; --reacquire-below, "
-                  "--reacquire-gain and --reacquire-min-vertices)")
-      ->capture_default_str();
-  cmd->add_option("--deform-backward", o.tuning.deform_backward_frames,
-                  "Make each key group's key frame this many frames after its "
-                  "first frame and track the frames between backwards from it, so a key group "
-                  "extends both ways from its key frame (where one of them is lost, the key "
-                  "frame is the first frame after all; 0: tracked forwards only)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  cmd->add_option("--deform-iterations", o.tuning.deform_iterations,
-                  "Gauss-Newton steps per correspondence radius")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100));
-  cmd->add_option("--deform-first-iterations", o.tuning.deform_first_iterations,
-                  "Gauss-Newton steps per radius on a key group's second frame "
-                  "(no velocity to predict its motion from yet)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100));
-  cmd->add_option("--proxy-fraction", o.tuning.proxy_fraction,
-                  "Share of each view's vertices kept in its correspondence proxy")
-      ->capture_default_str();
-  cmd->add_option("--proxy-max-edge", o.tuning.proxy_max_edge,
-                  "Longest edge a correspondence proxy's decimation leaves (0: 4% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--max-distance", o.tuning.max_distance,
-                  "Farthest correspondence along a normal; also the coarsest tolerance of a new "
-                  "frame's search (0: 8% of the size)")
-      ->capture_default_str();
-  cmd->add_option("--max-angle", o.tuning.max_angle_degrees,
-                  "Largest angle between a shooting normal and the data's normal, degrees")
-      ->capture_default_str();
-  cmd->add_option("--detail-distance", o.tuning.detail_max_distance,
-                  "Farthest displacement measured along a sample normal, and the range a key "
-                  "group must keep its frames' data within (0: 0.5% of the size; 2% with "
-                  "--max-key-groups 1)")
-      ->capture_default_str();
-  cmd->add_option("--outlier-distance", o.tuning.outlier_distance,
-                  "Hits this far from the views' median are dropped (0: 0.5% of the size)")
       ->capture_default_str();
   cmd->add_flag("--hide-unseen", o.hide_unseen,
                 "Leave out of the decoded surface the base triangles no view saw in any frame "

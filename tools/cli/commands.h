@@ -8,6 +8,11 @@
 
 namespace meshvid::cli {
 
+/// Where `args` (a refused `meshvid encode` command line's leftovers) hold a flag that became a
+/// --tune key, the line saying so ("--node-spacing is now --tune node_spacing=VALUE"); empty
+/// otherwise.
+std::string FormerTuningFlagHint(const std::vector<std::string>& args);
+
 void AddSimulateCommand(CLI::App& app, int* exit_code);
 void AddEvalCommand(CLI::App& app, int* exit_code);
 void AddInfoCommand(CLI::App& app, int* exit_code);

@@ -58,6 +58,10 @@ int Run(int argc, char** argv) {
     const std::string help =
         "meshvid " + (given.empty() ? std::string() : given.front()->get_name() + " ") + "--help";
     std::fprintf(stderr, "meshvid: %s (see %s)\n", e.what(), help.c_str());
+    if (!given.empty() && given.front()->get_name() == "encode") {
+      const std::string hint = meshvid::cli::FormerTuningFlagHint(given.front()->remaining());
+      if (!hint.empty()) std::fprintf(stderr, "meshvid: %s\n", hint.c_str());
+    }
     return kExitUsage;
   }
   return exit_code;

@@ -25,7 +25,16 @@ StatusOr<std::shared_ptr<DeviceHandle>> AcquireDevice() {
   std::lock_guard<std::mutex> lock(mutex);
   if (std::shared_ptr<DeviceHandle> device = shared.lock()) return device;
   auto device = std::make_shared<DeviceHandle>();
-  device->device = rtcNewDevice("verbose=0");
+  // One instruction set on every machine: Embree otherwise picks the widest the CPU has (SSE,
+  // AVX2, AVX-512), and its kernels round differently, so the same capture would encode to
+  // other bytes on another machine. SSE4.2 is on every x86-64 CPU since 2008 and costs the
+  // encoder and the renderer nothing measurable (bench/ENCODE.md); where Embree cannot use
+  // it (another architecture), its own choice stands.
+  device->device = rtcNewDevice("verbose=0,isa=sse4.2");
+  if (device->device == nullptr || rtcGetDeviceError(device->device) != RTC_ERROR_NONE) {
+    if (device->device != nullptr) rtcReleaseDevice(device->device);
+    device->device = rtcNewDevice("verbose=0");
+  }
   if (device->device == nullptr) {
     return InternalError("Embree could not start (rtcNewDevice failed; unsupported CPU?)");
   }

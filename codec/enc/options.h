@@ -179,8 +179,9 @@ struct EncoderOptions {
   std::optional<TriangleMesh> base_mesh;
   std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
   // --- detail
-  /// Subdivision levels of the displacement lattice. Measured on samba: level 3 costs 8x the
-  /// bytes of level 2 at quality 40 and gains no accuracy while the motion errs by centimetres.
+  /// Subdivision levels of the displacement lattice: the finest resolution a decoder can
+  /// choose. A level finer than the data's detail costs bytes for no accuracy
+  /// (bench/DESIGN-NOTES.md).
   int levels = 2;
   /// Leave out of the decoded surface the base triangles no view saw in any frame (the
   /// method's unfilled pixels). Off by default: the whole base surface is decoded, its

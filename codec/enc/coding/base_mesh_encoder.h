@@ -14,8 +14,8 @@ namespace meshvid {
 struct BaseMeshEncoding {
   int position_bits = 16;   ///< position quantisation (Draco: 1..30 bits per coordinate)
   int encoding_speed = 0;   ///< Draco speed, 0 (best compression) .. 10 (fastest)
-  /// Edgebreaker codes ~5x smaller than the sequential coder (samba's 2000-vertex base:
-  /// 6.5 kB against 32 kB) but renumbers vertices and triangles; data indexed by base vertex
+  /// Edgebreaker codes several times smaller than the sequential coder
+  /// (bench/DESIGN-NOTES.md) but renumbers vertices and triangles; data indexed by base vertex
   /// or triangle is then moved to the decoder's order (EncodedBaseMesh::vertex_in_decoded).
   /// It is used when every input vertex is found again, one to one, within a quantisation
   /// step; otherwise (or when false) the sequential coder, which keeps the order.
@@ -40,7 +40,7 @@ struct EncodedBaseMesh {
 
 /// Where edgebreaker's vertices cannot be matched to the input's at the asked quantisation
 /// (two vertices within a step that nothing tells apart), it is tried again with up to this
-/// many bits more before the sequential method (5x larger) is used.
+/// many bits more before the sequential method (several times larger) is used.
 inline constexpr int kEdgebreakerExtraBits = 4;
 
 /// Codes positions and triangles with Draco and decodes the result again.

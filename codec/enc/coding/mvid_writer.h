@@ -22,8 +22,8 @@ namespace meshvid {
 /// Settings of a .mvid file.
 struct MvidWriterSettings {
   int levels = 3;             ///< subdivision levels of the displacement lattice (0..6)
-  /// Lattice order codes ~25% fewer bytes than triangle blocks at fine quantisers in
-  /// bench/packing_bench (and has fewer pixels to decode); blocks win at coarse ones.
+  /// Lattice order codes fewer bytes than triangle blocks at fine quantisers (and has fewer
+  /// pixels to decode); blocks win at coarse ones (bench/packing_bench).
   DisplacementPacking packing = DisplacementPacking::kLatticeOrder;
   VideoCodec codec = VideoCodec::kHevc;
   int qp = 16;                ///< video quantiser (see VideoEncoding::qp)

@@ -28,8 +28,8 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 // OpenMesh's triangle mesh with faster versions of the topology queries the decimater makes
 // for every candidate collapse (BaseDecimaterT::is_collapse_legal calls them on its Mesh type,
 // so these hide the library's). Debian's libOpenMeshCore is built with assertions and its
-// is_collapse_ok allocates; measured, those calls took over half of a range-image proxy's
-// decimation time. The tests are OpenMesh's TriConnectivity::is_collapse_ok ones.
+// is_collapse_ok allocates, which makes those calls most of a range-image proxy's decimation
+// time (bench/DESIGN-NOTES.md). The tests are OpenMesh's TriConnectivity::is_collapse_ok ones.
 class DecimationMesh : public OpenMesh::TriMesh_ArrayKernelT<> {
  public:
   using OpenMesh::TriMesh_ArrayKernelT<>::valence;
@@ -274,7 +274,8 @@ void MakeHeap(std::vector<T>& heap) {
 // vertices, so it is computed when queued (cheap) and entries whose end vertices changed since
 // are skipped; the legality tests (topology, flips, bound modules) run only on the candidate
 // popped. The collapse order is the same; candidates found illegal get another chance in a
-// full refill when the queue runs dry. Measured on range-image proxies: 3x fewer evaluations.
+// full refill when the queue runs dry, which evaluates far fewer candidates on range-image
+// proxies (bench/DESIGN-NOTES.md).
 class LazyDecimater : public OpenMesh::Decimater::BaseDecimaterT<OmMesh> {
  public:
   explicit LazyDecimater(OmMesh& mesh) : BaseDecimaterT<OmMesh>(mesh) {}

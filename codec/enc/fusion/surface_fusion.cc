@@ -1,8 +1,7 @@
 // FuseRangeMeshes: oriented points of all views, thinned on a grid, averaged into a sparse
-// truncated signed-distance volume, contoured by marching tetrahedra. Chosen over CGAL's
-// Poisson reconstruction (used before), which closed every surface: it invented sheets far
-// from open and thin data (a cloth failed at its first frame, a chicken's frames ran the
-// mesher out of memory) and took 2-2.5 s a frame.
+// truncated signed-distance volume, contoured by marching tetrahedra. A Poisson reconstruction
+// closes every surface, inventing sheets far from open and thin data (a cloth, a chicken's
+// wings), and is slower (bench/FUSION.md).
 #include "codec/enc/fusion/surface_fusion.h"
 
 #include <algorithm>

@@ -57,8 +57,8 @@ std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
                                std::span<const Triangle> triangles);
 
 /// The share of a key frame's points its own base may leave unexplained: beyond it the fusion
-/// failed (a Poisson surface that lost most of the subject). Measured on key frames: samba
-/// 0.0, arm-block 0.005, horse-gallop 0.05-0.09; a failed horse-gallop fusion 0.92.
+/// failed (a surface that lost most of the subject). Working fusions leave under a tenth, a
+/// failed one most (bench/DESIGN-NOTES.md).
 inline constexpr double kMostUnexplainedAtKeyFrame = 0.25;
 
 /// The decoded surface's error at data the displacements reach, as a share of the

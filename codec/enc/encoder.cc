@@ -127,6 +127,103 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
   return Status::Ok();
 }
 
+/// The writer's settings for an encode of `frames` frames of `source`.
+MvidWriterSettings WriterSettings(const EncoderOptions& options, const FrameSource& source,
+                                  int frames, const MotionQuantization& transform_steps) {
+  MvidWriterSettings settings;
+  settings.levels = options.levels;
+  settings.codec = options.codec;
+  settings.qp = QualityToQp(options.codec, options.quality);
+  settings.effort = options.effort;
+  settings.base.position_bits = options.tuning.base_position_bits;
+  settings.gof_size = options.gof_size;
+  settings.frame_rate = source.frame_rate();
+  settings.frame_count = static_cast<std::uint32_t>(frames);
+  settings.metadata_json = options.metadata_json;
+  settings.motion = transform_steps;
+  return settings;
+}
+
+/// What the key groups made ahead of time, on other threads or by an earlier key group, and
+/// hand to the key group that starts at their frame: proxies, bases made ahead after a key
+/// group of one frame (key_frame_ahead.h), and a later key frame's base that did not serve
+/// (KeyGroupAnalysis::unused_base).
+class MadeAhead {
+ public:
+  explicit MadeAhead(const EncodeContext& ctx) : ctx_(ctx), ahead_(ctx) {}
+
+  ProxyCache& proxies() { return proxies_; }
+
+  /// Before the key group at `start` is analysed: takes the proxies made for it and the
+  /// frames its analysis looks at, and returns its base if one was made.
+  std::optional<TriangleMesh> TakeFor(int start) {
+    for (int next = start; next <= start + kBasesAhead; ++next) {
+      if (!proxies_.count(next)) TakeProxy(next);
+    }
+    std::optional<TriangleMesh> base = ahead_.TakeBase(start);
+    if (!base && unused_base_frame_ == start) base = std::move(unused_base_);
+    return base;
+  }
+
+  /// After a key group of one frame the subject moves fast, and the next key groups likely
+  /// hold one frame too: their bases are started now, beside this key group's analysis.
+  Status StartAfter(int start) {
+    for (int next = start + 1; next <= start + kBasesAhead && next < ctx_.end; ++next) {
+      if (ahead_.Started(next)) continue;
+      MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx_.source.LoadFrame(next));
+      ahead_.Start(next, std::move(views));
+    }
+    return Status::Ok();
+  }
+
+  /// A later key frame's base (tuning.deform_backward_frames) if made ahead, its proxy put in
+  /// the cache.
+  std::optional<TriangleMesh> TakeLaterBase(int frame) {
+    if (!proxies_.count(frame)) TakeProxy(frame);
+    return ahead_.TakeBase(frame);
+  }
+
+  /// Keeps the analysis' unused later base for the key group that may start at its frame.
+  void KeepUnused(KeyGroupAnalysis& analysis) {
+    if (!analysis.unused_base) return;
+    unused_base_ = std::move(analysis.unused_base);
+    unused_base_frame_ = analysis.unused_base_frame;
+  }
+
+ private:
+  void TakeProxy(int frame) {
+    if (std::optional<FrameProxy> proxy = ahead_.TakeProxy(frame)) {
+      proxies_[frame] = *std::move(proxy);
+    }
+  }
+
+  const EncodeContext& ctx_;
+  ProxyCache proxies_;
+  KeyFrameAhead ahead_;
+  std::optional<TriangleMesh> unused_base_;
+  int unused_base_frame_ = -1;
+};
+
+/// The means over the key groups and the shares of the displacement samples, once every key
+/// group is written.
+void Summarise(std::size_t filled, std::size_t hits, std::size_t samples, const MvidWriter& writer,
+               EncodeSummary* summary) {
+  const double key_groups = double(summary->key_groups.size());
+  double segments = 0, rigid_groups = 0;
+  for (const KeyGroupSummary& k : summary->key_groups) {
+    segments += k.segments;
+    rigid_groups += k.rigid_groups;
+    summary->surface_share += k.surface_share / key_groups;
+  }
+  summary->segments = static_cast<int>(std::lround(segments / key_groups));
+  summary->rigid_groups = static_cast<int>(std::lround(rigid_groups / key_groups));
+  summary->base_vertices = summary->key_groups.front().base_vertices;
+  const double total = double(samples);
+  summary->filled_share = total > 0 ? double(filled) / total : 0;
+  summary->hit_share = total > 0 ? double(hits) / total : 0;
+  summary->stats = writer.stats();
+}
+
 }  // namespace
 
 StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
@@ -169,24 +266,10 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   ctx.shot.min_abs_cos =
       static_cast<float>(std::cos(options.tuning.max_angle_degrees * M_PI / 180));
 
-  MvidWriterSettings settings;
-  settings.levels = options.levels;
-  settings.codec = options.codec;
-  settings.qp = QualityToQp(options.codec, options.quality);
-  settings.effort = options.effort;
-  settings.base.position_bits = options.tuning.base_position_bits;
-  settings.gof_size = options.gof_size;
-  settings.frame_rate = source.frame_rate();
-  settings.frame_count = static_cast<std::uint32_t>(frames);
-  settings.metadata_json = options.metadata_json;
-  settings.motion = transform_steps;
+  const MvidWriterSettings settings = WriterSettings(options, source, frames, transform_steps);
   std::unique_ptr<MvidWriter> writer;
   std::size_t filled = 0, hits = 0, samples = 0;
-  ProxyCache proxies;
-  KeyFrameAhead ahead(ctx);
-  // A later key frame's base that did not serve (KeyGroupAnalysis::unused_base), and its frame.
-  std::optional<TriangleMesh> unused_base;
-  int unused_base_frame = -1;
+  MadeAhead ahead(ctx);
   MotionHint hint;  // how the surface moved into the frame that ended the last key group
   for (int start = first; start < end;) {
     const bool may_cut = options.max_key_groups == 0 ||
@@ -194,44 +277,18 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     auto analysis_start = Clock::now();
     const bool after_one_frame =
         !summary.key_groups.empty() && summary.key_groups.back().frames == 1;
-    // Proxies made ahead go to the cache: this key group's own, and the next frames' its
-    // analysis looks at.
-    for (int next = start; next <= start + kBasesAhead; ++next) {
-      if (proxies.count(next)) continue;
-      if (std::optional<FrameProxy> proxy = ahead.TakeProxy(next)) {
-        proxies[next] = *std::move(proxy);
-      }
-    }
-    std::optional<TriangleMesh> base_made_ahead = ahead.TakeBase(start);
-    if (!base_made_ahead && unused_base_frame == start) base_made_ahead = std::move(unused_base);
+    std::optional<TriangleMesh> base_made_ahead = ahead.TakeFor(start);
     const double seconds_waited = SecondsSince(analysis_start);
-    // After a key group of one frame the subject moves fast, and the next key groups likely
-    // hold one frame too: their bases are made meanwhile.
     if (options.tuning.base_ahead && may_cut && after_one_frame && !options.base_mesh) {
-      for (int next = start + 1; next <= start + kBasesAhead && next < end; ++next) {
-        if (ahead.Started(next)) continue;
-        MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, source.LoadFrame(next));
-        ahead.Start(next, std::move(views));
-      }
+      MESHVID_RETURN_IF_ERROR(ahead.StartAfter(start));
     }
-    // A later key frame's (tuning.deform_backward_frames) made ahead, with its proxy.
-    auto later_base_ahead = [&](int frame) {
-      if (!proxies.count(frame)) {
-        if (std::optional<FrameProxy> proxy = ahead.TakeProxy(frame)) {
-          proxies[frame] = *std::move(proxy);
-        }
-      }
-      return ahead.TakeBase(frame);
-    };
-    MESHVID_ASSIGN_OR_RETURN(KeyGroupAnalysis analysis,
-                             AnalyseKeyGroup(ctx, start, may_cut, hint, &proxies,
-                                             std::move(base_made_ahead), later_base_ahead));
+    MESHVID_ASSIGN_OR_RETURN(
+        KeyGroupAnalysis analysis,
+        AnalyseKeyGroup(ctx, start, may_cut, hint, &ahead.proxies(), std::move(base_made_ahead),
+                        [&ahead](int frame) { return ahead.TakeLaterBase(frame); }));
     analysis.seconds_base += seconds_waited;
     hint = std::move(analysis.hint);
-    if (analysis.unused_base) {
-      unused_base = std::move(analysis.unused_base);
-      unused_base_frame = analysis.unused_base_frame;
-    }
+    ahead.KeepUnused(analysis);
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_tracking += SecondsSince(analysis_start) - analysis.seconds_base;
     if (!writer) {
@@ -248,21 +305,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   }
   MESHVID_RETURN_IF_ERROR(writer->Finish());
   ReportProgress(progress, "detail", frames, frames);
-
-  const double key_groups = double(summary.key_groups.size());
-  double segments = 0, rigid_groups = 0;
-  for (const KeyGroupSummary& k : summary.key_groups) {
-    segments += k.segments;
-    rigid_groups += k.rigid_groups;
-    summary.surface_share += k.surface_share / key_groups;
-  }
-  summary.segments = static_cast<int>(std::lround(segments / key_groups));
-  summary.rigid_groups = static_cast<int>(std::lround(rigid_groups / key_groups));
-  summary.base_vertices = summary.key_groups.front().base_vertices;
-  const double total = double(samples);
-  summary.filled_share = total > 0 ? double(filled) / total : 0;
-  summary.hit_share = total > 0 ? double(hits) / total : 0;
-  summary.stats = writer->stats();
+  Summarise(filled, hits, samples, *writer, &summary);
   return summary;
 }
 

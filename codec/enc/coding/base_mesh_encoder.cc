@@ -71,95 +71,112 @@ Status CheckSettings(const TriangleMesh& mesh, const BaseMeshEncoding& settings)
   return Status::Ok();
 }
 
-/// Where Draco put each input vertex: the one decoded vertex within a quantisation step.
-/// Vertices that share a position with others (a contour's coincident vertices) have several
-/// candidates; they are told apart by the triangles around them (an input triangle whose
-/// other two corners are placed names the decoded triangle, and so its third corner) or by
-/// elimination (one candidate left untaken); coincident vertices nothing tells apart take
-/// free candidates that keep their triangles' orientation. False when that fails.
-bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int position_bits,
-                   std::vector<std::uint32_t>* vertex_in_decoded) {
-  constexpr std::uint32_t kUnplaced = ~0u;
+constexpr std::uint32_t kUnplaced = ~0u;
+
+/// The state of MatchVertices: each input vertex's decoded vertex (kUnplaced until found),
+/// which decoded vertices are taken, and the candidates of those not yet placed.
+struct VertexMatch {
+  std::vector<std::uint32_t>& vertex_in_decoded;
+  std::vector<char> taken;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;  // of the ambiguous ones
+  /// Decoded directed edge -> the third corner of its triangle.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> third;
+
+  void Place(std::uint32_t v, std::uint32_t w) {
+    taken[w] = 1;
+    vertex_in_decoded[v] = w;
+  }
+};
+
+/// Places the vertices with one decoded vertex within `step`, and lists the candidates of the
+/// others. False when a vertex has none, or its one is taken.
+bool PlaceUnambiguous(const TriangleMesh& mesh, const TriangleMesh& decoded, float step,
+                      VertexMatch* match) {
   const PointCloud cloud{decoded.positions};
   const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
-  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
-  vertex_in_decoded->assign(mesh.vertex_count(), kUnplaced);
-  std::vector<char> taken(decoded.vertex_count(), 0);
-  std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;  // of the ambiguous ones
   std::vector<std::pair<std::uint32_t, float>> near;  // (index, squared distance)
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     near.clear();
     tree.radiusSearch(mesh.positions[v].data(), step * step, near, nanoflann::SearchParams());
     if (near.empty()) return false;
     if (near.size() == 1) {
-      if (taken[near[0].first]) return false;
-      taken[near[0].first] = 1;
-      (*vertex_in_decoded)[v] = near[0].first;
+      if (match->taken[near[0].first]) return false;
+      match->Place(static_cast<std::uint32_t>(v), near[0].first);
       continue;
     }
-    auto& list = candidates[static_cast<std::uint32_t>(v)];
+    auto& list = match->candidates[static_cast<std::uint32_t>(v)];
     for (const auto& item : near) list.push_back(item.first);
   }
-  if (candidates.empty()) return true;
-  // Decoded directed edge -> the third corner of its triangle.
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> third;
-  for (const Triangle& tri : decoded.triangles) {
-    for (int c = 0; c < 3; ++c) third[{tri[c], tri[(c + 1) % 3]}] = tri[(c + 2) % 3];
-  }
-  for (bool progress = true; progress && !candidates.empty();) {
+  return true;
+}
+
+/// Places ambiguous vertices by the triangles around them (an input triangle whose other two
+/// corners are placed names the decoded triangle, and so its third corner) and by
+/// elimination (one candidate left untaken), until neither places more. False on a
+/// contradiction.
+bool PlaceByNeighbours(const TriangleMesh& mesh, VertexMatch* match) {
+  std::vector<std::uint32_t>& placed = match->vertex_in_decoded;
+  for (bool progress = true; progress && !match->candidates.empty();) {
     progress = false;
     for (const Triangle& tri : mesh.triangles) {
       for (int c = 0; c < 3; ++c) {
         const std::uint32_t v = tri[(c + 2) % 3];
-        const std::uint32_t a = (*vertex_in_decoded)[tri[c]];
-        const std::uint32_t b = (*vertex_in_decoded)[tri[(c + 1) % 3]];
-        if ((*vertex_in_decoded)[v] != kUnplaced || a == kUnplaced || b == kUnplaced) continue;
-        const auto edge = third.find({a, b});
-        if (edge == third.end()) return false;
-        const std::vector<std::uint32_t>& list = candidates.at(v);
+        const std::uint32_t a = placed[tri[c]];
+        const std::uint32_t b = placed[tri[(c + 1) % 3]];
+        if (placed[v] != kUnplaced || a == kUnplaced || b == kUnplaced) continue;
+        const auto edge = match->third.find({a, b});
+        if (edge == match->third.end()) return false;
+        const std::vector<std::uint32_t>& list = match->candidates.at(v);
         const std::uint32_t w = edge->second;
-        if (taken[w] || std::find(list.begin(), list.end(), w) == list.end()) return false;
-        taken[w] = 1;
-        (*vertex_in_decoded)[v] = w;
-        candidates.erase(v);
+        if (match->taken[w] || std::find(list.begin(), list.end(), w) == list.end()) {
+          return false;
+        }
+        match->Place(v, w);
+        match->candidates.erase(v);
         progress = true;
       }
     }
     // A vertex with one candidate left untaken has it.
-    for (auto it = candidates.begin(); it != candidates.end();) {
+    for (auto it = match->candidates.begin(); it != match->candidates.end();) {
       std::uint32_t free_count = 0, last_free = 0;
       for (std::uint32_t w : it->second) {
-        if (!taken[w]) ++free_count, last_free = w;
+        if (!match->taken[w]) ++free_count, last_free = w;
       }
       if (free_count != 1) {
         ++it;
         continue;
       }
-      taken[last_free] = 1;
-      (*vertex_in_decoded)[it->first] = last_free;
-      it = candidates.erase(it);
+      match->Place(it->first, last_free);
+      it = match->candidates.erase(it);
       progress = true;
     }
   }
-  // Left: clusters of coincident vertices no placed neighbour tells apart (a sliver whose
-  // corners all share one quantised position). Any untaken candidates decode to the same
-  // place; a search over them keeps each triangle's orientation.
+  return true;
+}
+
+/// Places what is left: clusters of coincident vertices no placed neighbour tells apart (a
+/// sliver whose corners all share one quantised position). Any untaken candidates decode to
+/// the same place; a search over them keeps each triangle's orientation. False when it finds
+/// none within its budget.
+bool PlaceBySearch(const TriangleMesh& mesh, VertexMatch* match) {
+  std::vector<std::uint32_t>& placed = match->vertex_in_decoded;
   std::vector<std::uint32_t> left;
   std::map<std::uint32_t, std::vector<std::uint32_t>> triangles_of;  // of the left vertices
-  for (const auto& entry : candidates) left.push_back(entry.first);
+  for (const auto& entry : match->candidates) left.push_back(entry.first);
   for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int c = 0; c < 3; ++c) {
-      if (candidates.count(mesh.triangles[t][c])) triangles_of[mesh.triangles[t][c]].push_back(t);
+      if (match->candidates.count(mesh.triangles[t][c])) {
+        triangles_of[mesh.triangles[t][c]].push_back(t);
+      }
     }
   }
   auto consistent = [&](std::uint32_t v) {
     for (std::uint32_t t : triangles_of[v]) {
       const Triangle& tri = mesh.triangles[t];
-      const std::uint32_t a = (*vertex_in_decoded)[tri[0]], b = (*vertex_in_decoded)[tri[1]],
-                          c = (*vertex_in_decoded)[tri[2]];
+      const std::uint32_t a = placed[tri[0]], b = placed[tri[1]], c = placed[tri[2]];
       if (a == kUnplaced || b == kUnplaced || c == kUnplaced) continue;
-      const auto edge = third.find({a, b});
-      if (edge == third.end() || edge->second != c) return false;
+      const auto edge = match->third.find({a, b});
+      if (edge == match->third.end() || edge->second != c) return false;
     }
     return true;
   };
@@ -171,25 +188,24 @@ bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int po
   std::size_t i = 0;
   while (i < left.size()) {
     const std::uint32_t v = left[i];
-    const std::vector<std::uint32_t>& choices = candidates.at(v);
-    if ((*vertex_in_decoded)[v] != kUnplaced) {  // back here after a failure further on
-      taken[(*vertex_in_decoded)[v]] = 0;
-      (*vertex_in_decoded)[v] = kUnplaced;
+    const std::vector<std::uint32_t>& choices = match->candidates.at(v);
+    if (placed[v] != kUnplaced) {  // back here after a failure further on
+      match->taken[placed[v]] = 0;
+      placed[v] = kUnplaced;
     }
-    bool placed = false;
-    while (next_choice[i] < choices.size() && !placed) {
+    bool found = false;
+    while (next_choice[i] < choices.size() && !found) {
       const std::uint32_t w = choices[next_choice[i]++];
-      if (taken[w]) continue;
+      if (match->taken[w]) continue;
       if (--budget < 0) return false;
-      taken[w] = 1;
-      (*vertex_in_decoded)[v] = w;
-      placed = consistent(v);
-      if (!placed) {
-        taken[w] = 0;
-        (*vertex_in_decoded)[v] = kUnplaced;
+      match->Place(v, w);
+      found = consistent(v);
+      if (!found) {
+        match->taken[w] = 0;
+        placed[v] = kUnplaced;
       }
     }
-    if (placed) {
+    if (found) {
       ++i;
       continue;
     }
@@ -198,6 +214,24 @@ bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int po
     --i;
   }
   return true;
+}
+
+/// Where Draco put each input vertex: the one decoded vertex within a quantisation step.
+/// Vertices that share a position with others (a contour's coincident vertices) have several
+/// candidates; they are told apart by the triangles around them or by elimination
+/// (PlaceByNeighbours); coincident vertices nothing tells apart take free candidates that
+/// keep their triangles' orientation (PlaceBySearch). False when that fails.
+bool MatchVertices(const TriangleMesh& mesh, const TriangleMesh& decoded, int position_bits,
+                   std::vector<std::uint32_t>* vertex_in_decoded) {
+  const float step = BoundingBox(mesh).sizes().maxCoeff() / float((1u << position_bits) - 1);
+  vertex_in_decoded->assign(mesh.vertex_count(), kUnplaced);
+  VertexMatch match{*vertex_in_decoded, std::vector<char>(decoded.vertex_count(), 0), {}, {}};
+  if (!PlaceUnambiguous(mesh, decoded, step, &match)) return false;
+  if (match.candidates.empty()) return true;
+  for (const Triangle& tri : decoded.triangles) {
+    for (int c = 0; c < 3; ++c) match.third[{tri[c], tri[(c + 1) % 3]}] = tri[(c + 2) % 3];
+  }
+  return PlaceByNeighbours(mesh, &match) && PlaceBySearch(mesh, &match);
 }
 
 /// Finds where Draco put every input vertex and triangle (MatchVertices), and checks that the

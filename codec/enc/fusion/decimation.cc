@@ -456,9 +456,8 @@ void BuildOpenMesh(const TriangleMesh& mesh, OmMesh* om, std::vector<std::uint32
   }
 }
 
-}  // namespace
-
-StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOptions& options) {
+/// kInvalidArgument unless `mesh` is valid and every option is in range.
+Status CheckDecimationInput(const TriangleMesh& mesh, const DecimationOptions& options) {
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "mesh to decimate"));
   if (mesh.triangles.size() >= (std::size_t{1} << 30)) {
     return InvalidArgumentError("mesh to decimate has too many triangles (" +
@@ -485,6 +484,42 @@ StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOp
                                 std::to_string(options.max_aspect_ratio));
   }
 
+  return Status::Ok();
+}
+
+/// The decimated OpenMesh back as a TriangleMesh of the input's positions (`origin`: each
+/// OpenMesh vertex's input vertex); fan copies of one input vertex become one vertex again,
+/// and triangles that collapsed to no area are dropped.
+TriangleMesh FromOpenMesh(const OmMesh& om, const std::vector<std::uint32_t>& origin,
+                          const TriangleMesh& mesh) {
+  TriangleMesh result;
+  std::vector<std::uint32_t> output_index(mesh.positions.size(), kNone);
+  result.triangles.reserve(om.n_faces());
+  for (auto f : om.faces()) {
+    Triangle t;
+    int c = 0;
+    for (auto v : om.fv_range(f)) {
+      const std::uint32_t source = origin[v.idx()];
+      if (output_index[source] == kNone) {
+        output_index[source] = static_cast<std::uint32_t>(result.positions.size());
+        result.positions.push_back(mesh.positions[source]);
+      }
+      t[c++] = output_index[source];
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    const Eigen::Vector3f& a = result.positions[t[0]];
+    if ((result.positions[t[1]] - a).cross(result.positions[t[2]] - a).squaredNorm() == 0.0f) {
+      continue;
+    }
+    result.triangles.push_back(t);
+  }
+  return result;
+}
+
+}  // namespace
+
+StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOptions& options) {
+  MESHVID_RETURN_IF_ERROR(CheckDecimationInput(mesh, options));
   OmMesh om;
   om.request_vertex_status();
   om.request_edge_status();
@@ -531,28 +566,7 @@ StatusOr<TriangleMesh> DecimateMesh(const TriangleMesh& mesh, const DecimationOp
   // No garbage collection: it would renumber the vertices `origin` is indexed by, and the
   // face range skips deleted faces anyway.
 
-  // Back to a TriangleMesh; fan copies of one input vertex become one vertex again.
-  TriangleMesh result;
-  std::vector<std::uint32_t> output_index(mesh.positions.size(), kNone);
-  result.triangles.reserve(om.n_faces());
-  for (auto f : om.faces()) {
-    Triangle t;
-    int c = 0;
-    for (auto v : om.fv_range(f)) {
-      const std::uint32_t source = origin[v.idx()];
-      if (output_index[source] == kNone) {
-        output_index[source] = static_cast<std::uint32_t>(result.positions.size());
-        result.positions.push_back(mesh.positions[source]);
-      }
-      t[c++] = output_index[source];
-    }
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
-    const Eigen::Vector3f& a = result.positions[t[0]];
-    if ((result.positions[t[1]] - a).cross(result.positions[t[2]] - a).squaredNorm() == 0.0f) {
-      continue;
-    }
-    result.triangles.push_back(t);
-  }
+  TriangleMesh result = FromOpenMesh(om, origin, mesh);
   RemoveUnreferencedVertices(&result);
   if (result.triangles.empty()) return InternalError("decimation left no triangle");
   if (!mesh.normals.empty()) result.normals = ComputeVertexNormals(result);

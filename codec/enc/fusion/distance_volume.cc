@@ -76,6 +76,9 @@ DistanceVolume::Voxel* DistanceVolume::FindOrAdd(const VoxelIndex& v) {
   return &blocks_[cached_block_].voxels[PlaceInBlock(v)];
 }
 
+// One function of ~90 lines: the sort into runs, the blocks made beforehand and the parallel
+// writing share the points' order and home blocks, and the writing loop is the fusion's
+// innermost (kept inline for speed).
 void DistanceVolume::Integrate(std::span<const OrientedPoint> points) {
   const float h = settings_.voxel_size;
   const float band = settings_.truncation_voxels;

@@ -272,11 +272,27 @@ void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
   RemoveUnreferencedVertices(mesh);
 }
 
-}  // namespace
+/// The fusion's voxel: the options' spacing, or the views' sample spacing (a view sampled
+/// every s holds about area / s^2 points) or the thinning's cell scaled; never so fine that
+/// the volume would hold more than max_voxels or outrun its index range.
+double VoxelSize(const SurfaceFusionOptions& options, double area, std::size_t gathered_count,
+                 float thinning_cell, const Eigen::AlignedBox3f& box) {
+  const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
+  double voxel = options.spacing;
+  if (voxel == 0) {
+    voxel = options.voxel_scale * std::max<double>(sample_spacing, thinning_cell);
+  }
+  // Each point writes a ball of the band's radius; the band covers about area / voxel^2
+  // columns of 2 * truncation + 1 voxels (overlapping views write the same voxels, so this
+  // over-estimates); blocks of 8^3 voxels round it up.
+  const double band = 2 * options.truncation_voxels + 1;
+  const double min_voxel = box.diagonal().maxCoeff() / double(1 << 18);  // index range
+  return std::max(
+      {voxel, min_voxel, std::sqrt(area * band * 4 / static_cast<double>(options.max_voxels))});
+}
 
-StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
-                                       const SurfaceFusionOptions& options,
-                                       const ProgressCallback& progress) {
+/// kInvalidArgument unless every view is a valid mesh and every option is in range.
+Status CheckFusionInput(std::span<const TriangleMesh> views, const SurfaceFusionOptions& options) {
   if (views.empty()) return InvalidArgumentError("surface fusion needs at least one view");
   for (std::size_t v = 0; v < views.size(); ++v) {
     MESHVID_RETURN_IF_ERROR(ValidateMesh(views[v], "view " + std::to_string(v) + " to fuse"));
@@ -309,6 +325,15 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   if (options.max_voxels < 1000) {
     return InvalidArgumentError("surface fusion max_voxels must be at least 1000");
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
+                                       const SurfaceFusionOptions& options,
+                                       const ProgressCallback& progress) {
+  MESHVID_RETURN_IF_ERROR(CheckFusionInput(views, options));
   constexpr long kStages = 3;
   if (!ReportProgress(progress, "fusion: points", 0, kStages)) {
     return CancelledError("surface fusion cancelled");
@@ -338,19 +363,8 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   if (!(box.diagonal().norm() > 0)) {
     return InvalidArgumentError("surface fusion: the input points are all at one place");
   }
-  // A view sampled every s holds about area / s^2 points.
   const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
-  double voxel = options.spacing;
-  if (voxel == 0) {
-    voxel = options.voxel_scale * std::max<double>(sample_spacing, thinning_cell);
-  }
-  // Each point writes a ball of the band's radius; the band covers about area / voxel^2
-  // columns of 2 * truncation + 1 voxels (overlapping views write the same voxels, so this
-  // over-estimates); blocks of 8^3 voxels round it up.
-  const double band = 2 * options.truncation_voxels + 1;
-  const double min_voxel = box.diagonal().maxCoeff() / double(1 << 18);  // index range
-  voxel = std::max({voxel, min_voxel, std::sqrt(area * band * 4 /
-                                                static_cast<double>(options.max_voxels))});
+  const double voxel = VoxelSize(options, area, gathered_count, thinning_cell, box);
   if (!(voxel > 0) || !std::isfinite(voxel)) {
     return InvalidArgumentError("surface fusion: no voxel size fits the views");
   }

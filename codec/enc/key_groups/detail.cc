@@ -81,6 +81,57 @@ SampleGraph SampleGraph::Build(const RegularSubdivision& subdivision) {
   return graph;
 }
 
+namespace {
+
+/// What no measurement reaches in `frame`: spread from filled neighbours, ring by ring (a
+/// multi-source breadth-first order, so each sample averages the neighbours of earlier
+/// rings); 0 where the frame has no value at all.
+void SpreadIntoUnreached(const SampleGraph& graph, std::vector<float>* frame_values) {
+  std::vector<float>& frame = *frame_values;
+  const std::size_t samples = frame.size();
+  std::vector<std::uint32_t> ring, next_ring;
+  std::vector<float> values;
+  std::vector<char> queued(samples);
+  for (std::uint32_t i = 0; i < samples; ++i) {
+    queued[i] = !std::isnan(frame[i]);
+  }
+  for (std::uint32_t i = 0; i < samples; ++i) {
+    if (!queued[i]) continue;
+    for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+      const std::uint32_t n = graph.neighbours[k];
+      if (!queued[n]) queued[n] = 1, ring.push_back(n);
+    }
+  }
+  while (!ring.empty()) {
+    values.resize(ring.size());
+    for (std::size_t r = 0; r < ring.size(); ++r) {
+      double sum = 0;
+      int terms = 0;
+      const std::uint32_t i = ring[r];
+      for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+        const float n = frame[graph.neighbours[k]];
+        if (!std::isnan(n)) sum += n, ++terms;
+      }
+      values[r] = terms > 0 ? float(sum / terms) : 0.0f;
+    }
+    next_ring.clear();
+    for (std::size_t r = 0; r < ring.size(); ++r) {
+      const std::uint32_t i = ring[r];
+      frame[i] = values[r];
+      for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+        const std::uint32_t n = graph.neighbours[k];
+        if (!queued[n]) queued[n] = 1, next_ring.push_back(n);
+      }
+    }
+    ring.swap(next_ring);
+  }
+  for (std::size_t i = 0; i < samples; ++i) {
+    if (std::isnan(frame[i])) frame[i] = 0;  // a frame with no measurement at all
+  }
+}
+
+}  // namespace
+
 std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* last_measured,
                                   std::vector<std::vector<float>>* frames) {
   const std::size_t count = frames->size();
@@ -126,49 +177,9 @@ std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* 
       if (!std::isnan((*frames)[f][i])) (*last_measured)[i] = (*frames)[f][i];
     }
   }
-  // What no measurement reaches: spread from filled neighbours, ring by ring (a multi-source
-  // breadth-first order, so each sample averages the neighbours of earlier rings).
-  std::vector<std::uint32_t> ring, next_ring;
-  std::vector<float> values;
-  std::vector<char> queued(samples);
   for (std::size_t f = 0; f < count; ++f) {
-    std::vector<float>& frame = result[f];
-    ring.clear();
-    for (std::uint32_t i = 0; i < samples; ++i) {
-      queued[i] = !std::isnan(frame[i]);
-    }
-    for (std::uint32_t i = 0; i < samples; ++i) {
-      if (!queued[i]) continue;
-      for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
-        const std::uint32_t n = graph.neighbours[k];
-        if (!queued[n]) queued[n] = 1, ring.push_back(n);
-      }
-    }
-    while (!ring.empty()) {
-      values.resize(ring.size());
-      for (std::size_t r = 0; r < ring.size(); ++r) {
-        double sum = 0;
-        int terms = 0;
-        const std::uint32_t i = ring[r];
-        for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
-          const float n = frame[graph.neighbours[k]];
-          if (!std::isnan(n)) sum += n, ++terms;
-        }
-        values[r] = terms > 0 ? float(sum / terms) : 0.0f;
-      }
-      next_ring.clear();
-      for (std::size_t r = 0; r < ring.size(); ++r) {
-        const std::uint32_t i = ring[r];
-        frame[i] = values[r];
-        for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
-          const std::uint32_t n = graph.neighbours[k];
-          if (!queued[n]) queued[n] = 1, next_ring.push_back(n);
-        }
-      }
-      ring.swap(next_ring);
-    }
+    SpreadIntoUnreached(graph, &result[f]);
     for (std::size_t i = 0; i < samples; ++i) {
-      if (std::isnan(frame[i])) frame[i] = 0;  // a frame with no measurement at all
       if (std::isnan((*frames)[f][i])) ++filled;
     }
   }

@@ -38,6 +38,8 @@ float SampleSpacing(const PointTree& tree, std::span<const Eigen::Vector3f> samp
 
 }  // namespace
 
+// One function of ~90 lines: the tree, the limits and the per-point pass that every figure of
+// the fit is summed in together (one search per data point).
 DataFit MeasureDataFit(std::span<const Eigen::Vector3f> surface_samples,
                        std::span<const Eigen::Vector3f> data_points,
                        float representable_distance, float stray_distance,

@@ -40,7 +40,9 @@ struct PairSums {
     return *this;
   }
 
-  /// The least-squares rigid transform x = R p + t (Kabsch), identity without vertices.
+  /// The least-squares rigid transform x = R p + t (Kabsch), identity without vertices. Fitted
+  /// from the sums, not the points (as Eigen::umeyama, the encoder's other rigid fit, needs):
+  /// two groups' sums add when they are joined.
   std::pair<Eigen::Matrix3d, Eigen::Vector3d> Fit() const {
     if (count == 0) return {Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()};
     const Eigen::Vector3d p_mean = p / count, x_mean = x / count;
@@ -61,6 +63,56 @@ struct PairSums {
   }
 };
 
+/// Per node and frame, the sums over the vertices it moves, each where the node's own
+/// transform puts it and weighted by its influence: a group's transform replaces the node's on
+/// all of them, not just near the node.
+std::vector<std::vector<PairSums>> SumsByNodeAndFrame(
+    std::span<const Eigen::Vector3f> rest, const MotionModel& motion,
+    std::span<const std::vector<RigidTransform>> tracks) {
+  const std::size_t nodes = motion.segment_count, frames = tracks.size();
+  std::vector<std::vector<PairSums>> node_sums(nodes, std::vector<PairSums>(frames));
+  for (std::size_t v = 0; v < rest.size() && v < motion.blends.size(); ++v) {
+    const VertexBlend& blend = motion.blends[v];
+    for (int k = 0; k < blend.count; ++k) {
+      const BlendInfluence& influence = blend.influences[k];
+      if (influence.segment >= nodes) continue;
+      for (std::size_t f = 0; f < frames; ++f) {
+        if (influence.segment >= tracks[f].size()) continue;
+        node_sums[influence.segment][f].Add(
+            rest[v].cast<double>(), tracks[f][influence.segment].Apply(rest[v]).cast<double>(),
+            influence.weight);
+      }
+    }
+  }
+  return node_sums;
+}
+
+/// Numbers the groups still alive (by their first node) 0, 1, ... and fits each group of more
+/// than one node its transform per frame from its sums.
+void NumberGroups(const std::vector<std::vector<std::uint32_t>>& members,
+                  const std::vector<char>& alive,
+                  const std::vector<std::vector<PairSums>>& group_sums,
+                  std::span<const std::vector<RigidTransform>> tracks, RigidNodeGroups* groups) {
+  const std::size_t frames = tracks.size();
+  groups->transforms.assign(frames, std::vector<RigidTransform>(groups->group_count));
+  int next = 0;
+  for (std::uint32_t g = 0; g < members.size(); ++g) {
+    if (!alive[g]) continue;
+    for (const std::uint32_t j : members[g]) groups->group_of_node[j] = next;
+    for (std::size_t f = 0; f < frames && members[g].size() > 1; ++f) {
+      RigidTransform& fitted = groups->transforms[f][next];
+      if (group_sums[g][f].count == 0) {  // its nodes move no vertex
+        if (members[g][0] < tracks[f].size()) fitted = tracks[f][members[g][0]];
+        continue;
+      }
+      const auto [r, t] = group_sums[g][f].Fit();
+      fitted.rotation = Eigen::Quaternionf(r.cast<float>()).normalized();
+      fitted.translation = t.cast<float>();
+    }
+    ++next;
+  }
+}
+
 }  // namespace
 
 RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
@@ -76,23 +128,7 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
   const std::size_t frames = tracks.size();
   if (nodes < 2 || frames == 0 || adjacent.size() != nodes) return groups;
 
-  // Per node and frame, the sums over the vertices it moves, each where the node's own
-  // transform puts it and weighted by its influence: a group's transform replaces the node's
-  // on all of them, not just near the node.
-  std::vector<std::vector<PairSums>> node_sums(nodes, std::vector<PairSums>(frames));
-  for (std::size_t v = 0; v < rest.size() && v < motion.blends.size(); ++v) {
-    const VertexBlend& blend = motion.blends[v];
-    for (int k = 0; k < blend.count; ++k) {
-      const BlendInfluence& influence = blend.influences[k];
-      if (influence.segment >= nodes) continue;
-      for (std::size_t f = 0; f < frames; ++f) {
-        if (influence.segment >= tracks[f].size()) continue;
-        node_sums[influence.segment][f].Add(
-            rest[v].cast<double>(),
-            tracks[f][influence.segment].Apply(rest[v]).cast<double>(), influence.weight);
-      }
-    }
-  }
+  const std::vector<std::vector<PairSums>> node_sums = SumsByNodeAndFrame(rest, motion, tracks);
 
   // Groups by the id of their first node: members, sums per frame, neighbours, version.
   std::vector<std::vector<std::uint32_t>> members(nodes);
@@ -161,23 +197,7 @@ RigidNodeGroups FindRigidNodeGroups(std::span<const Eigen::Vector3f> rest,
     --groups.group_count;
     for (const std::uint32_t k : neighbours[a]) push(std::min(a, k), std::max(a, k));
   }
-  groups.transforms.assign(frames, std::vector<RigidTransform>(groups.group_count));
-  int next = 0;
-  for (std::uint32_t g = 0; g < nodes; ++g) {
-    if (!alive[g]) continue;
-    for (const std::uint32_t j : members[g]) groups.group_of_node[j] = next;
-    for (std::size_t f = 0; f < frames && members[g].size() > 1; ++f) {
-      RigidTransform& fitted = groups.transforms[f][next];
-      if (group_sums[g][f].count == 0) {  // its nodes move no vertex
-        if (members[g][0] < tracks[f].size()) fitted = tracks[f][members[g][0]];
-        continue;
-      }
-      const auto [r, t] = group_sums[g][f].Fit();
-      fitted.rotation = Eigen::Quaternionf(r.cast<float>()).normalized();
-      fitted.translation = t.cast<float>();
-    }
-    ++next;
-  }
+  NumberGroups(members, alive, group_sums, tracks, &groups);
   return groups;
 }
 

@@ -174,54 +174,47 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-/// Simulates `frames` frames of the arm-block scene and encodes them, once for every test
-/// process (testing::SharedInputs): the capture, the file, its summary and what the encode
-/// printed are in shared_; each test's own files go in dir_.
+/// Simulates `frames` frames of the arm-block scene and encodes them.
 class ArmBlockEncode : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     if (!testing::HaveMeshvidCli()) return;
     dir_ = new testing::TempDir;
-    shared_ = testing::SharedInputs(
-        "arm-block-encode", *dir_, [](const std::string& folder, const testing::TempDir& scratch) {
-          const testing::CliRun sim =
-              testing::RunMeshvid("simulate scene:arm-block -o '" + folder +
-                                      "/cap' --frames 0:" + std::to_string(kFrames) + " -q",
-                                  scratch);
-          if (sim.exit_code != 0) return false;
-          const testing::CliRun enc = testing::RunMeshvid(
-              "encode '" + folder + "/cap/manifest.json' -o '" + folder +
-                  "/arm.mvid' --levels 2 --summary-json '" + folder + "/summary.json'",
-              scratch);
-          testing::WriteFile(folder + "/encode-stderr.txt", enc.err);
-          return enc.exit_code == 0;
-        });
+    const testing::CliRun sim = testing::RunMeshvid(
+        "simulate scene:arm-block -o '" + dir_->File("cap") + "' --frames 0:" +
+            std::to_string(kFrames) + " -q",
+        *dir_);
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const testing::CliRun enc = testing::RunMeshvid(
+        "encode '" + dir_->File("cap/manifest.json") + "' -o '" + dir_->File("arm.mvid") +
+            "' --levels 2 --summary-json '" + dir_->File("summary.json") + "'",
+        *dir_);
+    encode_exit_ = enc.exit_code;
+    encode_err_ = enc.err;
   }
   static void TearDownTestSuite() { delete dir_; }
   void SetUp() override {
     MESHVID_REQUIRE_CLI();
-    ASSERT_FALSE(shared_.empty()) << "the shared arm-block capture and encode failed";
-    encode_err_ = testing::ReadFile(Shared("encode-stderr.txt"));
+    ASSERT_EQ(encode_exit_, 0) << encode_err_;
   }
-  /// A file of the shared capture and encode.
-  static std::string Shared(const std::string& name) { return shared_ + "/" + name; }
   static constexpr int kFrames = 16;
   static testing::TempDir* dir_;
-  static std::string shared_;
-  std::string encode_err_;
+  static int encode_exit_;
+  static std::string encode_err_;
 };
 testing::TempDir* ArmBlockEncode::dir_ = nullptr;
-std::string ArmBlockEncode::shared_;
+int ArmBlockEncode::encode_exit_ = -1;
+std::string ArmBlockEncode::encode_err_;
 
 TEST_F(ArmBlockEncode, SummaryStatesTheStreamsAndRate) {
   EXPECT_NE(encode_err_.find("segments"), std::string::npos) << encode_err_;
   EXPECT_NE(encode_err_.find("Mbit/s"), std::string::npos) << encode_err_;
-  const nlohmann::json s = nlohmann::json::parse(testing::ReadFile(Shared("summary.json")));
+  const nlohmann::json s = nlohmann::json::parse(testing::ReadFile(dir_->File("summary.json")));
   EXPECT_EQ(s["frames"], kFrames);
   EXPECT_EQ(s["views"], 3);
   EXPECT_GE(s["segments"].get<int>(), 2);
   const auto total = s["bytes_total"].get<std::uint64_t>();
-  EXPECT_EQ(total, std::filesystem::file_size(Shared("arm.mvid")));
+  EXPECT_EQ(total, std::filesystem::file_size(dir_->File("arm.mvid")));
   EXPECT_GE(total, s["bytes_base"].get<std::uint64_t>() + s["bytes_motion"].get<std::uint64_t>() +
                        s["bytes_transforms"].get<std::uint64_t>() +
                        s["bytes_video"].get<std::uint64_t>());
@@ -231,13 +224,13 @@ TEST_F(ArmBlockEncode, SummaryStatesTheStreamsAndRate) {
 }
 
 TEST_F(ArmBlockEncode, DecodedSequenceCoversAtLeastTheInputAndStaysNearTheTruth) {
-  const std::string gt = Shared("cap/ground_truth.obj");
-  testing::CliRun run =
-      testing::RunMeshvid("eval --ref '" + gt + "' --test '" + Shared("arm.mvid") +
-                              "' --samples 40000 -q --json '" + dir_->File("mvid.json") + "'",
-                          *dir_);
+  const std::string gt = dir_->File("cap/ground_truth.obj");
+  testing::CliRun run = testing::RunMeshvid(
+      "eval --ref '" + gt + "' --test '" + dir_->File("arm.mvid") + "' --samples 40000 -q --json '" +
+          dir_->File("mvid.json") + "'",
+      *dir_);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  run = testing::RunMeshvid("eval --ref '" + gt + "' --test '" + Shared("cap/manifest.json") +
+  run = testing::RunMeshvid("eval --ref '" + gt + "' --test '" + dir_->File("cap/manifest.json") +
                                 "' --samples 40000 -q --json '" + dir_->File("raw.json") + "'",
                             *dir_);
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -328,7 +321,7 @@ std::map<std::string, double> PartSharesInOneGroup(const std::string& mvid,
 TEST_F(ArmBlockEncode, TheBlockAndTheArmEachMoveAsOneRigidGroup) {
   const std::string mvid = dir_->File("arm-deform.mvid");
   const testing::CliRun enc = testing::RunMeshvid(
-      "encode '" + Shared("cap/manifest.json") + "' -o '" + mvid +
+      "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
           "' --tune deform_rigid_group_factor=1 --rebase-gain 4 --summary-json '" +
           dir_->File("deform.json") + "'",
       *dir_);

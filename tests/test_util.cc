@@ -47,46 +47,6 @@ std::string ReadFile(const std::string& path) {
 
 bool HaveMeshvidCli() { return std::getenv("MESHVID_CLI") != nullptr; }
 
-std::string SharedInputs(
-    const std::string& key, const TempDir& scratch,
-    const std::function<bool(const std::string& folder, const TempDir&)>& make) {
-  namespace fs = std::filesystem;
-  const char* cache_env = std::getenv("MESHVID_TEST_CACHE");
-  const char* cache = cache_env != nullptr ? cache_env : MESHVID_TEST_CACHE_DIR;
-  const char* cli = std::getenv("MESHVID_CLI");
-  if (*cache == '\0' || cli == nullptr) {
-    const std::string folder = scratch.File(key);
-    fs::create_directories(folder);
-    return make(folder, scratch) ? folder : "";
-  }
-  std::error_code ec;
-  const auto stamp =
-      static_cast<unsigned long long>(fs::last_write_time(cli, ec).time_since_epoch().count());
-  const std::string folder =
-      (fs::path(cache) /
-       (key + "-" + std::to_string(fs::file_size(cli, ec)) + "-" + std::to_string(stamp)))
-          .string();
-  if (fs::is_directory(folder, ec)) return folder;
-  fs::create_directories(cache, ec);
-  // Folders of this key made by an older meshvid go.
-  for (const fs::directory_entry& old : fs::directory_iterator(cache, ec)) {
-    const std::string name = old.path().filename().string();
-    if (name.rfind(key + "-", 0) == 0) fs::remove_all(old.path(), ec);
-  }
-  // Made beside its final place and renamed there: a process that finds the folder finds it
-  // whole. Two processes may make it at once; the encoder's output is the same bytes, and the
-  // second rename fails harmlessly.
-  std::string partial = folder + ".partial-XXXXXX";
-  if (mkdtemp(partial.data()) == nullptr) return "";
-  if (!make(partial, scratch)) {
-    fs::remove_all(partial, ec);
-    return "";
-  }
-  fs::rename(partial, folder, ec);
-  if (ec) fs::remove_all(partial, ec);
-  return fs::is_directory(folder) ? folder : "";
-}
-
 CliRun RunMeshvid(const std::string& arguments, const TempDir& dir) {
   CliRun run;
   const char* cli = std::getenv("MESHVID_CLI");

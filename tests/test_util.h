@@ -2,7 +2,6 @@
 #ifndef MESHVID_TESTS_TEST_UTIL_H_
 #define MESHVID_TESTS_TEST_UTIL_H_
 
-#include <functional>
 #include <string>
 
 #include "codec/common/camera.h"
@@ -46,17 +45,6 @@ bool HaveMeshvidCli();
 /// Runs `meshvid ARGUMENTS` (a shell command line tail; quote paths), capturing its output
 /// in files of `dir`.
 CliRun RunMeshvid(const std::string& arguments, const TempDir& dir);
-
-/// A folder of inputs the test processes of one executable share (a simulated capture and its
-/// encode), made once: `make` fills a fresh folder (its scratch files in the TempDir it is
-/// given), which then moves into place under the test cache, named by `key`
-/// and the built meshvid's size and time, so the other test processes, and later runs with the
-/// same meshvid, read it instead of making it again. The cache is the build's
-/// tests/shared_inputs (MESHVID_TEST_CACHE overrides it; empty: none, and the folder is this
-/// process's own, in `scratch`). Empty when `make` fails.
-std::string SharedInputs(
-    const std::string& key, const TempDir& scratch,
-    const std::function<bool(const std::string& folder, const TempDir&)>& make);
 
 /// A flat square grid mesh in the z = `z` plane, side `size`, `n` x `n` quads, centred on the
 /// origin, normals along +z.

@@ -73,7 +73,7 @@ TEST(CliConventionsTest, AFrameRangePastTheEndIsClippedWithAWarningByEveryComman
       << rendered.err;
   EXPECT_TRUE(std::filesystem::exists(dir.File("r11.png")));
   // A range with no frame left is an error, the same in every command.
-  for (const std::string command :
+  for (const std::string& command :
        {"decode '" + kThreeKeyGroups + "' --no-write",
         "export '" + kThreeKeyGroups + "' -o '" + dir.File("f.obj") + "'"}) {
     const testing::CliRun none = testing::RunMeshvid(command + " --frames 20:30", dir);
@@ -209,7 +209,7 @@ TEST(CliConventionsTest, CountsAgreeInNumber) {
 TEST(CliConventionsTest, JsonGoesToAFileOrStdoutAndSummariesToStderr) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
-  for (const std::string command :
+  for (const std::string& command :
        {"info '" + kThreeKeyGroups + "' --json -",
         "decode '" + kThreeKeyGroups + "' --no-write -q --json -",
         "export '" + kThreeKeyGroups + "' -o '" + dir.File("e.glb") + "' -q --json -",

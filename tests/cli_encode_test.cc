@@ -174,47 +174,57 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-/// Simulates `frames` frames of the arm-block scene and encodes them.
+/// The arm-block scene, simulated and encoded by tests/make_arm_block_inputs.sh. Under ctest the
+/// script runs once per run, before these tests, and MESHVID_TEST_ARM_BLOCK_INPUTS names its
+/// folder; a test process run alone runs the script into its own folder. The capture, the file,
+/// its summary and what the encode printed are read through Shared(); each test's own files go
+/// in dir_.
 class ArmBlockEncode : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     if (!testing::HaveMeshvidCli()) return;
     dir_ = new testing::TempDir;
-    const testing::CliRun sim = testing::RunMeshvid(
-        "simulate scene:arm-block -o '" + dir_->File("cap") + "' --frames 0:" +
-            std::to_string(kFrames) + " -q",
-        *dir_);
-    ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    const testing::CliRun enc = testing::RunMeshvid(
-        "encode '" + dir_->File("cap/manifest.json") + "' -o '" + dir_->File("arm.mvid") +
-            "' --levels 2 --summary-json '" + dir_->File("summary.json") + "'",
-        *dir_);
-    encode_exit_ = enc.exit_code;
-    encode_err_ = enc.err;
+    const char* made = std::getenv("MESHVID_TEST_ARM_BLOCK_INPUTS");
+    if (made != nullptr && *made != '\0') {
+      shared_ = made;
+      return;
+    }
+    shared_ = dir_->File("shared");
+    const std::string command = std::string("bash '") + MESHVID_MAKE_ARM_BLOCK_INPUTS + "' '" +
+                                std::getenv("MESHVID_CLI") + "' '" + shared_ + "' " +
+                                std::to_string(kFrames) + " 2> '" + dir_->File("make.txt") + "'";
+    if (std::system(command.c_str()) != 0) make_error_ = testing::ReadFile(dir_->File("make.txt"));
   }
   static void TearDownTestSuite() { delete dir_; }
   void SetUp() override {
     MESHVID_REQUIRE_CLI();
-    ASSERT_EQ(encode_exit_, 0) << encode_err_;
+    ASSERT_TRUE(make_error_.empty()) << "making the arm-block inputs failed: " << make_error_;
+    ASSERT_TRUE(std::filesystem::exists(Shared("summary.json")))
+        << "no arm-block encode in " << shared_;
+    encode_err_ = testing::ReadFile(Shared("encode-stderr.txt"));
   }
+  /// A file of the shared capture and encode.
+  static std::string Shared(const std::string& name) { return shared_ + "/" + name; }
+  /// The frames simulated; CMakeLists.txt passes the same count to the script.
   static constexpr int kFrames = 16;
   static testing::TempDir* dir_;
-  static int encode_exit_;
-  static std::string encode_err_;
+  static std::string shared_;
+  static std::string make_error_;
+  std::string encode_err_;
 };
 testing::TempDir* ArmBlockEncode::dir_ = nullptr;
-int ArmBlockEncode::encode_exit_ = -1;
-std::string ArmBlockEncode::encode_err_;
+std::string ArmBlockEncode::shared_;
+std::string ArmBlockEncode::make_error_;
 
 TEST_F(ArmBlockEncode, SummaryStatesTheStreamsAndRate) {
   EXPECT_NE(encode_err_.find("segments"), std::string::npos) << encode_err_;
   EXPECT_NE(encode_err_.find("Mbit/s"), std::string::npos) << encode_err_;
-  const nlohmann::json s = nlohmann::json::parse(testing::ReadFile(dir_->File("summary.json")));
+  const nlohmann::json s = nlohmann::json::parse(testing::ReadFile(Shared("summary.json")));
   EXPECT_EQ(s["frames"], kFrames);
   EXPECT_EQ(s["views"], 3);
   EXPECT_GE(s["segments"].get<int>(), 2);
   const auto total = s["bytes_total"].get<std::uint64_t>();
-  EXPECT_EQ(total, std::filesystem::file_size(dir_->File("arm.mvid")));
+  EXPECT_EQ(total, std::filesystem::file_size(Shared("arm.mvid")));
   EXPECT_GE(total, s["bytes_base"].get<std::uint64_t>() + s["bytes_motion"].get<std::uint64_t>() +
                        s["bytes_transforms"].get<std::uint64_t>() +
                        s["bytes_video"].get<std::uint64_t>());
@@ -224,13 +234,13 @@ TEST_F(ArmBlockEncode, SummaryStatesTheStreamsAndRate) {
 }
 
 TEST_F(ArmBlockEncode, DecodedSequenceCoversAtLeastTheInputAndStaysNearTheTruth) {
-  const std::string gt = dir_->File("cap/ground_truth.obj");
-  testing::CliRun run = testing::RunMeshvid(
-      "eval --ref '" + gt + "' --test '" + dir_->File("arm.mvid") + "' --samples 40000 -q --json '" +
-          dir_->File("mvid.json") + "'",
-      *dir_);
+  const std::string gt = Shared("cap/ground_truth.obj");
+  testing::CliRun run =
+      testing::RunMeshvid("eval --ref '" + gt + "' --test '" + Shared("arm.mvid") +
+                              "' --samples 40000 -q --json '" + dir_->File("mvid.json") + "'",
+                          *dir_);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  run = testing::RunMeshvid("eval --ref '" + gt + "' --test '" + dir_->File("cap/manifest.json") +
+  run = testing::RunMeshvid("eval --ref '" + gt + "' --test '" + Shared("cap/manifest.json") +
                                 "' --samples 40000 -q --json '" + dir_->File("raw.json") + "'",
                             *dir_);
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -321,7 +331,7 @@ std::map<std::string, double> PartSharesInOneGroup(const std::string& mvid,
 TEST_F(ArmBlockEncode, TheBlockAndTheArmEachMoveAsOneRigidGroup) {
   const std::string mvid = dir_->File("arm-deform.mvid");
   const testing::CliRun enc = testing::RunMeshvid(
-      "encode '" + dir_->File("cap/manifest.json") + "' -o '" + mvid +
+      "encode '" + Shared("cap/manifest.json") + "' -o '" + mvid +
           "' --tune deform_rigid_group_factor=1 --rebase-gain 4 --summary-json '" +
           dir_->File("deform.json") + "'",
       *dir_);

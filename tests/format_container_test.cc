@@ -258,7 +258,9 @@ std::vector<uint8_t> WriteKeyGroups() {
   const std::vector<GroupOfFrames> gofs = SampleGofs();
   for (int k = 0; k < 3; ++k) {
     EXPECT_TRUE(writer.WriteBase(Bytes("base " + std::to_string(k))).ok());
-    if (k < 2) EXPECT_TRUE(writer.WriteMotion(Bytes("motion " + std::to_string(k))).ok());
+    if (k < 2) {
+      EXPECT_TRUE(writer.WriteMotion(Bytes("motion " + std::to_string(k))).ok());
+    }
     const uint32_t first = k == 0 ? 0 : k == 1 ? 2 : 3;
     const uint32_t end = k == 0 ? 2 : k == 1 ? 3 : 5;
     for (uint32_t g = first; g < end; ++g) EXPECT_TRUE(writer.WriteGof(gofs[g]).ok());
@@ -288,7 +290,9 @@ TEST(FormatContainerTest, KeyGroupsAreIndexedScannedStreamedAndValidated) {
     EXPECT_EQ(reader.KeyGroupOfGof(0), 0u);
     EXPECT_EQ(reader.KeyGroupOfGof(1), 0u);
     EXPECT_EQ(reader.KeyGroupOfGof(2), 1u);
-    if (count == 3) EXPECT_EQ(reader.GofsOfKeyGroup(2), (std::pair<size_t, size_t>{3, 5}));
+    if (count == 3) {
+      EXPECT_EQ(reader.GofsOfKeyGroup(2), (std::pair<size_t, size_t>{3, 5}));
+    }
   };
   auto indexed = ContainerReader::OpenMemory(file, "keys.mvid");
   ASSERT_TRUE(indexed.ok());
@@ -364,7 +368,7 @@ std::vector<uint8_t> MinimalFile() {
 std::string HexDump(const std::vector<uint8_t>& bytes) {
   std::string text;
   for (size_t line = 0; line < bytes.size(); line += 16) {
-    char buffer[8];
+    char buffer[24];
     std::snprintf(buffer, sizeof(buffer), "%04zx ", line);
     text += buffer;
     for (size_t i = line; i < line + 16 && i < bytes.size(); ++i) {

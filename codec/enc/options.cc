@@ -35,6 +35,13 @@ constexpr const char* KnobType() {
   return "double";
 }
 
+/// Each knob's place in kKnobs, in the table's order (kKnobIndex_deform_rigidity, ...).
+enum KnobIndex {
+#define MESHVID_KNOB_INDEX(type, name, value, lowest, highest, flag, help) kKnobIndex_##name,
+  MESHVID_ENCODER_TUNING(MESHVID_KNOB_INDEX)
+#undef MESHVID_KNOB_INDEX
+};
+
 constexpr TuningKnob kKnobs[] = {
 #define MESHVID_KNOB_ENTRY(type, name, value, lowest, highest, flag, help) \
   {#name, KnobType<type>(), static_cast<double>(value), lowest, highest, flag, help},
@@ -58,13 +65,6 @@ std::string TuningRangeText(const TuningKnob& knob) {
 }
 
 namespace {
-
-const TuningKnob* FindKnob(std::string_view key) {
-  for (const TuningKnob& knob : kKnobs) {
-    if (key == knob.key) return &knob;
-  }
-  return nullptr;
-}
 
 /// kInvalidArgument naming the knob unless `value` is finite and in its range.
 Status CheckKnob(const TuningKnob& knob, double value) {
@@ -108,7 +108,7 @@ std::span<const TuningKnob> TuningKnobs() { return kKnobs; }
 
 Status SetTuning(EncoderTuning& tuning, std::string_view key, std::string_view value) {
 #define MESHVID_SET_KNOB(type, name, default_value, lowest, highest, flag, help) \
-  if (key == #name) return ParseKnob(*FindKnob(#name), value, &tuning.name);
+  if (key == #name) return ParseKnob(kKnobs[kKnobIndex_##name], value, &tuning.name);
   MESHVID_ENCODER_TUNING(MESHVID_SET_KNOB)
 #undef MESHVID_SET_KNOB
   return InvalidArgumentError("unknown tuning key '" + std::string(key) +
@@ -151,10 +151,10 @@ Status CheckOptions(const EncoderOptions& o) {
   }
   if (o.max_key_groups < 0) return bad("max_key_groups must be >= 0 (0: no limit)");
   if (o.base_vertices < 4) return bad("base_vertices must be at least 4");
-#define MESHVID_CHECK_KNOB(type, name, default_value, lowest, highest, flag, help)       \
-  if (Status in_range = CheckKnob(*FindKnob(#name), static_cast<double>(o.tuning.name)); \
-      !in_range.ok()) {                                                                  \
-    return in_range;                                                                     \
+#define MESHVID_CHECK_KNOB(type, name, default_value, lowest, highest, flag, help)                \
+  if (Status in_range = CheckKnob(kKnobs[kKnobIndex_##name], static_cast<double>(o.tuning.name)); \
+      !in_range.ok()) {                                                                           \
+    return in_range;                                                                              \
   }
   MESHVID_ENCODER_TUNING(MESHVID_CHECK_KNOB)
 #undef MESHVID_CHECK_KNOB

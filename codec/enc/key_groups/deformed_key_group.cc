@@ -51,13 +51,14 @@ class KeyGroupTracking {
         proxies_(*proxies),
         fused_frames_(*fused_frames),
         analysis_(*analysis),
-        tracker_(topology, graph, TrackingOptions(ctx)),
+        tracking_options_(TrackingOptions(ctx)),
+        tracker_(topology, graph, tracking_options_),
         meter_(analysis->base, analysis->motion, lattice, ctx.lengths.detail_max_distance,
                ctx.lengths.max_distance, /*judge_across=*/true),
         identity_(graph.node_count()),
         observed_(analysis->base.vertex_count(), 0) {
     // The key group's second frame is also solved at the set rigidity throughout (FirstStep).
-    DeformationTrackingOptions supple = TrackingOptions(ctx);
+    DeformationTrackingOptions supple = tracking_options_;
     if (supple.coarse_stiffness > 1) {
       supple.coarse_stiffness = 1;
       supple_tracker_.emplace(topology, graph, supple);
@@ -111,6 +112,8 @@ class KeyGroupTracking {
   ProxyCache& proxies_;
   FusedFrames& fused_frames_;
   KeyGroupAnalysis& analysis_;
+  /// The tracker's settings for this encode (TrackingOptions).
+  const DeformationTrackingOptions tracking_options_;
   const DeformationTracker tracker_;
   std::optional<DeformationTracker> supple_tracker_;
   FitMeter meter_;

@@ -404,6 +404,11 @@ StatusOr<const std::vector<Triangle>*> MvidDecoder::TrianglesOf(std::uint32_t fr
   return Triangles(level);
 }
 
+StatusOr<std::pair<int, int>> MvidDecoder::PictureSizeOf(std::uint32_t frame) {
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return std::make_pair(group_->layout->width(), group_->layout->height());
+}
+
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   // A stream whose header did not know the frame count learns it at its end.
   const bool count_known = groups_->reader() != nullptr || info_.frame_count > 0;

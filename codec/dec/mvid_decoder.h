@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "codec/common/displacement_image.h"
@@ -143,6 +144,9 @@ class MvidDecoder {
   StatusOr<MvidStreamSizes> MeasureStreams();
   /// The segment transforms of a frame.
   StatusOr<std::vector<RigidTransform>> DecodeTransforms(std::uint32_t frame);
+  /// The size of the displacement pictures of the group holding `frame`: its key group's
+  /// layout in the packing the group states (HEAD gives key group 0's). Decodes that group.
+  StatusOr<std::pair<int, int>> PictureSizeOf(std::uint32_t frame);
 
  private:
   class GroupSource;

@@ -301,6 +301,11 @@ int RunEncode(EncodeArguments args) {
   nlohmann::json metadata;
   metadata["encoder"] = "meshvid encode";
   metadata["capture"] = std::filesystem::path(args.capture).filename().string();
+  // The capture frames the file holds, so that `meshvid concat` can check that pieces follow
+  // each other.
+  metadata["capture_frames"] = {args.options.first_frame, args.options.end_frame < 0
+                                                              ? (*source)->frame_count()
+                                                              : args.options.end_frame};
   args.options.metadata_json = DumpJson(metadata);  // the file name may not be UTF-8
 
   // Written to a temporary file first: a failed encode never leaves a truncated .mvid behind,

@@ -22,6 +22,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddFuseCommand(CLI::App& app, int* exit_code);
 void AddExportCommand(CLI::App& app, int* exit_code);
 void AddRenderCommand(CLI::App& app, int* exit_code);
+void AddConcatCommand(CLI::App& app, int* exit_code);
+void AddCutCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

@@ -34,6 +34,8 @@ int Run(int argc, char** argv) {
   meshvid::cli::AddRenderCommand(app, &exit_code);
   meshvid::cli::AddEvalCommand(app, &exit_code);
   meshvid::cli::AddFuseCommand(app, &exit_code);
+  meshvid::cli::AddConcatCommand(app, &exit_code);
+  meshvid::cli::AddCutCommand(app, &exit_code);
   meshvid::cli::AddBenchCommand(app, &exit_code);
   try {
     app.parse(argc, argv);

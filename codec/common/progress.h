@@ -1,7 +1,9 @@
-// Progress reporting: long library operations take a callback; the CLI draws it as a bar.
+// Progress reporting: long library operations take a callback; the CLI draws it as a bar. And
+// the one way the project times its stages.
 #ifndef MESHVID_CODEC_COMMON_PROGRESS_H_
 #define MESHVID_CODEC_COMMON_PROGRESS_H_
 
+#include <chrono>
 #include <functional>
 #include <string_view>
 
@@ -16,6 +18,11 @@ using ProgressCallback = std::function<bool(std::string_view stage, long done, l
 inline bool ReportProgress(const ProgressCallback& progress, std::string_view stage, long done,
                            long total) {
   return !progress || progress(stage, done, total);
+}
+
+/// Seconds from `start` (a std::chrono::steady_clock time) to now.
+inline double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace meshvid

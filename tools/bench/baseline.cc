@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "codec/common/progress.h"
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/coding/base_mesh_encoder.h"
 #include "codec/enc/fusion/decimation.h"
@@ -17,11 +18,7 @@
 namespace meshvid {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using Clock = std::chrono::steady_clock;  // timed with SecondsSince (codec/common/progress.h)
 
 std::string FramePath(const std::string& folder, int frame, const char* extension) {
   char name[32];

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -14,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "codec/common/progress.h"
 #include "codec/dec/mvid_decoder.h"
 #include "format/container_copy.h"
 #include "format/container_reader.h"
@@ -27,14 +27,15 @@
 namespace meshvid::cli {
 namespace {
 
-/// The capture frames [first, end) a file's metadata says it holds (`meshvid encode` writes
-/// them as "capture_frames"), and the capture's name; nullopt when the metadata has neither.
+/// The capture frames [first, end) a file holds, and the capture's name.
 struct CaptureFrames {
   std::string capture;
   std::int64_t first = 0;
   std::int64_t end = 0;
 };
 
+/// What a file's metadata says of its capture frames (`meshvid encode` writes them as
+/// "capture_frames"); nullopt when it says nothing.
 std::optional<CaptureFrames> CaptureFramesOf(const nlohmann::json& metadata) {
   if (!metadata.is_object()) return std::nullopt;
   const auto frames = metadata.find("capture_frames");
@@ -81,10 +82,6 @@ StatusOr<std::uint64_t> WriteContainer(const std::string& path, const ContainerH
   return bytes;
 }
 
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 struct ConcatArguments {
   std::vector<std::string> inputs;
   std::string output;
@@ -96,8 +93,9 @@ struct ConcatArguments {
 StatusOr<std::string> JoinedMetadata(const ConcatArguments& args,
                                      const std::vector<ContainerReader>& readers) {
   nlohmann::json joined = MetadataOf(readers.front().header());
-  std::optional<CaptureFrames> previous = CaptureFramesOf(joined);
-  bool every_file_says = previous.has_value();
+  const std::optional<CaptureFrames> first = CaptureFramesOf(joined);
+  std::optional<CaptureFrames> previous = first;
+  bool every_file_says = first.has_value();
   for (std::size_t i = 1; i < readers.size(); ++i) {
     const std::optional<CaptureFrames> next = CaptureFramesOf(MetadataOf(readers[i].header()));
     every_file_says = every_file_says && next.has_value();
@@ -117,7 +115,7 @@ StatusOr<std::string> JoinedMetadata(const ConcatArguments& args,
     previous = next;
   }
   if (every_file_says) {
-    joined["capture_frames"] = {CaptureFramesOf(joined)->first, previous->end};
+    joined["capture_frames"] = {first->first, previous->end};
     return DumpJson(joined);
   }
   std::fprintf(stderr,

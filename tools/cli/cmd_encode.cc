@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "codec/common/progress.h"
 #include "codec/enc/encoder.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
@@ -320,8 +321,7 @@ int RunEncode(EncodeArguments args) {
   if (!summary.ok()) return ReportError(WithFlagNames(summary.status()));
   const Status committed = (*out)->Commit();
   if (!committed.ok()) return ReportError(committed);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = SecondsSince(start);
   if (!args.quiet) PrintSummary(*summary, args, seconds);
   if (!args.summary_json.empty()) {
     const Status written = WriteJsonOutput(

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "codec/common/progress.h"
 #include "codec/enc/fusion/surface_fusion.h"
 #include "format/output_file.h"
 #include "tools/cli/commands.h"
@@ -75,8 +76,7 @@ int RunFuse(const FuseArguments& args) {
     if (!views.ok()) return ReportError(views.status());
     const auto start = std::chrono::steady_clock::now();
     StatusOr<TriangleMesh> fused = FuseRangeMeshes(*views, args.fusion);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = SecondsSince(start);
     fuse_seconds += seconds;
     entry["seconds"] = seconds;
     if (!fused.ok()) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
+#include "codec/common/progress.h"
 #include "format/output_file.h"
 #include "tools/io/capture.h"
 #include "tools/io/mesh_io.h"
@@ -226,8 +227,7 @@ StatusOr<SimulateSummary> SimulateCapture(MeshSequence& ground_truth, const std:
   MESHVID_RETURN_IF_ERROR(WriteCaptureManifest(summary.manifest_path, info, paths));
   for (const std::string& path : truth_writer->paths()) summary.output_bytes += FileSize(path);
   summary.output_bytes += FileSize(summary.manifest_path) + FileSize(out_dir + "/simulate.json");
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  summary.seconds = SecondsSince(start_time);
   return summary;
 }
 

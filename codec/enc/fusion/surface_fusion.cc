@@ -272,12 +272,11 @@ void TrimBeyondData(std::span<const Eigen::Vector3f> data, float limit,
   RemoveUnreferencedVertices(mesh);
 }
 
-/// The fusion's voxel: the options' spacing, or the views' sample spacing (a view sampled
-/// every s holds about area / s^2 points) or the thinning's cell scaled; never so fine that
-/// the volume would hold more than max_voxels or outrun its index range.
-double VoxelSize(const SurfaceFusionOptions& options, double area, std::size_t gathered_count,
+/// The fusion's voxel: the options' spacing, or the views' `sample_spacing` or the thinning's
+/// cell scaled; never so fine that the volume would hold more than max_voxels or outrun its
+/// index range.
+double VoxelSize(const SurfaceFusionOptions& options, double area, double sample_spacing,
                  float thinning_cell, const Eigen::AlignedBox3f& box) {
-  const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
   double voxel = options.spacing;
   if (voxel == 0) {
     voxel = options.voxel_scale * std::max<double>(sample_spacing, thinning_cell);
@@ -363,8 +362,9 @@ StatusOr<TriangleMesh> FuseRangeMeshes(std::span<const TriangleMesh> views,
   if (!(box.diagonal().norm() > 0)) {
     return InvalidArgumentError("surface fusion: the input points are all at one place");
   }
+  // A view sampled every s holds about area / s^2 points.
   const double sample_spacing = std::sqrt(area / static_cast<double>(gathered_count));
-  const double voxel = VoxelSize(options, area, gathered_count, thinning_cell, box);
+  const double voxel = VoxelSize(options, area, sample_spacing, thinning_cell, box);
   if (!(voxel > 0) || !std::isfinite(voxel)) {
     return InvalidArgumentError("surface fusion: no voxel size fits the views");
   }

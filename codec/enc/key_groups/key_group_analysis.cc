@@ -23,10 +23,6 @@
 
 namespace meshvid {
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 Status Cancelled() { return CancelledError("encode cancelled"); }
 
 StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,

@@ -28,10 +28,8 @@
 
 namespace meshvid {
 
+/// The clock the encoder times its stages by (SecondsSince, codec/common/progress.h).
 using Clock = std::chrono::steady_clock;
-
-/// Seconds from `start` to now.
-double SecondsSince(Clock::time_point start);
 
 /// Lengths the options leave at 0, derived from the data's size.
 struct Lengths {

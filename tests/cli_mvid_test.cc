@@ -36,6 +36,38 @@ TEST(MvidCliTest, InfoDescribesTheGoldenFile) {
   EXPECT_EQ(j["metadata"]["golden"], "sphere");
 }
 
+TEST(MvidCliTest, InfoDescribesACaptureAndChecksItsFiles) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string capture = dir.File("capture");
+  const testing::CliRun simulated = testing::RunMeshvid(
+      "simulate scene:arm-block -o '" + capture + "' --frames 0:3 --views 2 --seed 1 -q", dir);
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+
+  const testing::CliRun text = testing::RunMeshvid("info '" + capture + "/manifest.json'", dir);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("capture of 2 views x 3 frames at 25 fps"), std::string::npos)
+      << text.out;
+  // A folder holding a manifest is a capture too; --check loads every view file.
+  const testing::CliRun json = testing::RunMeshvid("info --check --json - '" + capture + "'", dir);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["views"].size(), 2u);
+  EXPECT_EQ(j["frame_rate"], 25.0);
+  EXPECT_EQ(j["checked"], true);
+
+  // A damaged view file: info still describes the capture, --check names the file.
+  const nlohmann::json manifest =
+      nlohmann::json::parse(testing::ReadFile(capture + "/manifest.json"));
+  const std::string damaged = manifest["frames"][2][1];
+  testing::WriteFile(capture + "/" + damaged, "ply\nformat nonsense\n");
+  EXPECT_EQ(testing::RunMeshvid("info '" + capture + "'", dir).exit_code, 0);
+  const testing::CliRun checked = testing::RunMeshvid("info --check '" + capture + "'", dir);
+  EXPECT_EQ(checked.exit_code, 1);
+  EXPECT_NE(checked.err.find(damaged), std::string::npos) << checked.err;
+}
+
 TEST(MvidCliTest, CheckFindsAFlippedBit) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;

@@ -1,11 +1,13 @@
 // `meshvid info`: what a .mvid holds, and with --check whether it is intact.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "codec/dec/mvid_decoder.h"
 #include "format/validate.h"
+#include "tools/io/capture.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/json_text.h"
 #include "tools/cli/mvid_input.h"
@@ -34,7 +36,62 @@ Status DecodeEveryGroup(MvidDecoder& decoder, const ProgressCallback& progress) 
   return Status::Ok();
 }
 
+/// True if `spec` names a capture (a manifest, a folder holding one, a file pattern or a
+/// Stanford .conf) rather than a .mvid.
+bool IsCaptureSpec(const std::string& spec) {
+  if (spec.ends_with(".mvid")) return false;
+  return spec.ends_with(".json") || spec.ends_with(".conf") ||
+         spec.find('{') != std::string::npos || std::filesystem::is_directory(spec);
+}
+
+/// `meshvid info CAPTURE`: the capture's views, frames and rate; with --check, every view
+/// file is loaded and validated too. Scripts read the frame count from its JSON (the chunk
+/// planner of scripts/cluster does).
+int RunCaptureInfo(const InfoArguments& args) {
+  StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.file);
+  if (!capture.ok()) return ReportError(capture.status());
+  const CaptureInfo& info = (*capture)->info();
+  if (args.check) {
+    ProgressBar bar(args.json == "-");
+    const ProgressCallback progress = bar.Callback();
+    for (int frame = 0; frame < info.frame_count; ++frame) {
+      StatusOr<std::vector<TriangleMesh>> views = (*capture)->LoadFrame(frame);
+      if (!views.ok()) {
+        bar.Finish();
+        return ReportError(views.status());
+      }
+      ReportProgress(progress, "checking", frame + 1, info.frame_count);
+    }
+    bar.Finish();
+  }
+  nlohmann::json view_names = nlohmann::json::array();
+  std::string names;
+  for (const CaptureView& view : info.views) {
+    view_names.push_back(view.name);
+    names += (names.empty() ? "" : " ") + view.name;
+  }
+  if (!args.json.empty()) {
+    const nlohmann::json j = {{"capture", args.file},
+                              {"frames", info.frame_count},
+                              {"views", view_names},
+                              {"frame_rate", info.frame_rate},
+                              {"duration_s", info.frame_count / info.frame_rate},
+                              {"units", info.units},
+                              {"checked", args.check}};
+    const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
+    if (!written.ok()) return ReportError(written);
+    if (args.json == "-") return 0;
+  }
+  std::printf("%s: capture of %s x %s at %.3g fps (%.2f s), units %s\n", args.file.c_str(),
+              Count(info.views.size(), "view").c_str(), Count(info.frame_count, "frame").c_str(),
+              info.frame_rate, info.frame_count / info.frame_rate, info.units.c_str());
+  std::printf("  views          %s\n", names.c_str());
+  if (args.check) std::printf("  check          ok: every view file of every frame loads\n");
+  return 0;
+}
+
 int RunInfo(const InfoArguments& args) {
+  if (IsCaptureSpec(args.file)) return RunCaptureInfo(args);
   if (args.check) {
     StatusOr<ValidationReport> report = ValidateContainerFile(args.file);
     if (!report.ok()) return ReportError(report.status());
@@ -167,9 +224,12 @@ void AddInfoCommand(CLI::App& app, int* exit_code) {
       "info",
       "Show what a .mvid holds: frames, rate, groups, levels (vertices and triangles of each),\n"
       "the bytes of every stream, bytes per frame and Mbit/s. With --check, also validate\n"
-      "every chunk and CRC and decode every group; exits 1 if anything is wrong.");
-  cmd->add_option("FILE", args->file, "The .mvid file")->required();
-  cmd->add_flag("--check", args->check, "Validate the file and decode every group");
+      "every chunk and CRC and decode every group; exits 1 if anything is wrong.\n"
+      "Given a capture (manifest.json, a folder holding one, a {frame}/{view} pattern or a\n"
+      ".conf), show its views, frames and rate; with --check, load every view file.");
+  cmd->add_option("FILE", args->file, "The .mvid file, or a capture")->required();
+  cmd->add_flag("--check", args->check,
+                "Validate the file and decode every group (a capture: load every view file)");
   cmd->add_option("--json", args->json,
                   JsonOptionHelp("Also write what the file holds") +
                       "\n(with -, instead of the text)")

@@ -59,7 +59,7 @@ Status CheckJoinable(const ContainerHeader& first, const ContainerHeader& next,
 }
 
 Status CopyGofs(ContainerReader& in, std::size_t first_gof, std::size_t end_gof,
-                ContainerWriter& out) {
+                ContainerWriter& out, const GofRewrite& rewrite) {
   if (first_gof >= end_gof || end_gof > in.gof_count()) {
     return InvalidArgumentError("groups " + std::to_string(first_gof) + ".." +
                                 std::to_string(end_gof) + " are not a range of the file's " +
@@ -91,6 +91,14 @@ Status CopyGofs(ContainerReader& in, std::size_t first_gof, std::size_t end_gof,
       }
     }
     MESHVID_ASSIGN_OR_RETURN(GroupOfFrames gof, in.ReadGof(g));
+    if (rewrite) {
+      const std::uint32_t frame_count = gof.frame_count;
+      MESHVID_RETURN_IF_ERROR(rewrite(g, &gof));
+      if (gof.frame_count != frame_count) {
+        return InvalidArgumentError("group " + std::to_string(g) +
+                                    ": a rewrite may not change its frame count");
+      }
+    }
     gof.gof_index = static_cast<std::uint32_t>(held.gofs.size());
     gof.first_frame = next_frame();
     MESHVID_RETURN_IF_ERROR(out.WriteGof(gof));

@@ -7,6 +7,7 @@
 #define MESHVID_FORMAT_CONTAINER_COPY_H_
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include "format/container_reader.h"
@@ -27,14 +28,19 @@ Status CheckWholeContainer(const ContainerReader& reader, const std::string& nam
 Status CheckJoinable(const ContainerHeader& first, const ContainerHeader& next,
                      const std::string& next_name);
 
+/// Changes a GOF read from the input (given its index there) before it is written: its
+/// packets and transforms, never its frames. CopyGofs renumbers it afterwards.
+using GofRewrite = std::function<Status(std::size_t input_gof, GroupOfFrames* gof)>;
+
 /// Appends GOFs [first_gof, end_gof) of `in` to `out` (which must have begun): before the
 /// first GOF copied from each key group, that key group's BASE and MOTN, so every key group of
 /// the output starts with the chunks it needs. The GOFs are renumbered to follow the GOFs and
-/// frames `out` holds. kInvalidArgument when the range is empty or out of bounds, or when a key
-/// group would have to start without a BASE or MOTN chunk after `out`'s GOFs (a version-1
-/// file without either).
+/// frames `out` holds; `rewrite`, when given, changes each GOF's content first (`meshvid
+/// transcode` codes its video again). kInvalidArgument when the range is empty or out of
+/// bounds, or when a key group would have to start without a BASE or MOTN chunk after `out`'s
+/// GOFs (a version-1 file without either); a rewrite's error stops the copy.
 Status CopyGofs(ContainerReader& in, std::size_t first_gof, std::size_t end_gof,
-                ContainerWriter& out);
+                ContainerWriter& out, const GofRewrite& rewrite = {});
 
 }  // namespace meshvid
 

@@ -64,4 +64,27 @@ std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
   return writer.Release();
 }
 
+StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint8_t> side_info,
+                                                       std::span<const std::uint8_t> video_config) {
+  ByteReader reader(side_info, "group side information");
+  MESHVID_ASSIGN_OR_RETURN(const std::uint8_t version, reader.ReadU8("side_info_version"));
+  if (version != 1 && version != kSideInfoVersion) {
+    return UnsupportedError("group side information version " + std::to_string(version) +
+                            " is not supported (this decoder reads versions 1 and 2)");
+  }
+  MESHVID_RETURN_IF_ERROR(reader.ReadU8("displacement_packing").status());
+  MESHVID_RETURN_IF_ERROR(reader.ReadU32("displacement_minimum").status());
+  MESHVID_RETURN_IF_ERROR(reader.ReadU32("displacement_step").status());
+  // Everything before the configuration record's size is kept, and everything after it.
+  const std::span<const std::uint8_t> before = side_info.first(reader.position());
+  MESHVID_ASSIGN_OR_RETURN(const std::uint32_t config_size, reader.ReadU32("video_config_size"));
+  MESHVID_RETURN_IF_ERROR(reader.ReadBytes(config_size, "video_config").status());
+  ByteWriter writer;
+  writer.PutBytes(before);
+  writer.PutU32(static_cast<std::uint32_t>(video_config.size()));
+  writer.PutBytes(video_config);
+  writer.PutBytes(side_info.subspan(reader.position()));
+  return writer.Release();
+}
+
 }  // namespace meshvid

@@ -39,6 +39,12 @@ std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
                                             std::span<const std::uint8_t> video_config,
                                             std::span<const std::uint8_t> transforms_payload);
 
+/// The side information `side_info` with its video configuration record replaced by
+/// `video_config`, everything else (version, packing, range, transforms) byte for byte: a group
+/// whose video is coded again (`meshvid transcode`). kCorrupt if `side_info` does not parse.
+StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint8_t> side_info,
+                                                       std::span<const std::uint8_t> video_config);
+
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_

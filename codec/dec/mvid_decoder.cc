@@ -409,6 +409,11 @@ StatusOr<std::pair<int, int>> MvidDecoder::PictureSizeOf(std::uint32_t frame) {
   return std::make_pair(group_->layout->width(), group_->layout->height());
 }
 
+StatusOr<const GreyPicture*> MvidDecoder::DisplacementPicture(std::uint32_t frame) {
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return &group_->pictures[frame - group_->first_frame];
+}
+
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   // A stream whose header did not know the frame count learns it at its end.
   const bool count_known = groups_->reader() != nullptr || info_.frame_count > 0;

@@ -147,6 +147,9 @@ class MvidDecoder {
   /// The size of the displacement pictures of the group holding `frame`: its key group's
   /// layout in the packing the group states (HEAD gives key group 0's). Decodes that group.
   StatusOr<std::pair<int, int>> PictureSizeOf(std::uint32_t frame);
+  /// The decoded displacement picture of `frame` (10-bit samples as the video gives them,
+  /// before de-quantisation). Valid until a frame of another group is decoded.
+  StatusOr<const GreyPicture*> DisplacementPicture(std::uint32_t frame);
 
  private:
   class GroupSource;

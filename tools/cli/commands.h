@@ -24,6 +24,7 @@ void AddExportCommand(CLI::App& app, int* exit_code);
 void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddConcatCommand(CLI::App& app, int* exit_code);
 void AddCutCommand(CLI::App& app, int* exit_code);
+void AddTranscodeCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

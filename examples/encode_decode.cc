@@ -83,7 +83,7 @@ int main() {
   meshvid::EncoderOptions options;
   options.levels = 1;
   options.base_vertices = 600;
-  options.codec = meshvid::VideoCodec::kFfv1;  // lossless displacements; HEVC is the default
+  options.codec = meshvid::VideoCodec::kFfv1;  // lossless displacements; AV1 is the default
   options.max_key_groups = 1;  // one base, so every frame has the same triangles
   std::vector<std::uint8_t> file;
   const meshvid::ByteSink sink = [&file](std::span<const std::uint8_t> bytes) {

@@ -366,7 +366,7 @@ PYBIND11_MODULE(meshvid, m) {
       "allow_partial=True: then it opens with a UserWarning and File.partial is True.");
 
   m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
-        py::arg("codec") = "hevc", py::arg("levels") = 2,
+        py::arg("codec") = "av1", py::arg("levels") = 2,
         py::arg("rebase_gain_db") = kDefaultRebaseGainDb, py::arg("max_key_groups") = 0,
         py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32, py::arg("base_vertices") = 2000,
         py::arg("effort") = 4, py::arg("progress") = py::none(), py::arg("tune") = py::none(),

@@ -30,7 +30,7 @@ TEST(BenchCliTest, BadArgumentsAreUsageErrorsWithAMessage) {
       {"bench --sequences nope" + out, 2, "unknown sequence 'nope'"},
       {"bench --sequences cloth --rigs 3-circle" + out, 2, "--rigs '3-circle'"},
       {"bench --sequences cloth --qualities 20,200" + out, 2, "--qualities '20,200'"},
-      {"bench --sequences cloth --codecs hevc,mpeg2" + out, 2, "--codecs 'hevc,mpeg2'"},
+      {"bench --sequences cloth --codecs av1,mpeg2" + out, 2, "--codecs 'av1,mpeg2'"},
       {"bench --sequences cloth --bits 0,8" + out, 2, "--bits '0,8'"},
       {"bench --sequences cloth --samples 10" + out, 2, "--samples must be at least 1000"},
       {"bench --sequences cloth --frames -3" + out, 2, "--frames"},
@@ -68,7 +68,7 @@ TEST(BenchCliTest, ReportOnlyWritesResultsMarkdownFromRecords) {
       "bench --report-only --no-plots -o \"" + dir.File("bench/results") + "\"", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string md = testing::ReadFile(dir.File("bench/RESULTS.md"));
-  EXPECT_NE(md.find("| fake | 3-arc | -50.0% (HEVC L1) not met"), std::string::npos) << md;
+  EXPECT_NE(md.find("| fake | 3-arc | -50.0% (AV1 L1) not met"), std::string::npos) << md;
   EXPECT_NE(md.find("(No plot: plots were not drawn (--no-plots))"), std::string::npos);
   EXPECT_NE(md.find("meshvid bench -o "), std::string::npos);
 }
@@ -88,7 +88,7 @@ TEST(BenchCliTest, ReportOnlyFillsPerFrameFiguresFromTheEvalJsonInTheWorkFolder)
   testing::WriteFile(results + "/fake-6-ring.json", ring);
   BenchRecord complete = testing::FakeRecord();
   for (const auto& [method, codec, quality, level] :
-       {std::tuple{kMethodMeshvid, "hevc", 40, 1}, std::tuple{kMethodBaseline, "draco", 14, -1}}) {
+       {std::tuple{kMethodMeshvid, "av1", 40, 1}, std::tuple{kMethodBaseline, "draco", 14, -1}}) {
     const BenchPoint* p = FindPoint(complete, method, codec, quality, level);
     ASSERT_NE(p, nullptr);
     testing::WriteFile(EvalJsonPath(results + "/tmp", complete, *p), testing::FakeEvalJson(*p));
@@ -100,11 +100,11 @@ TEST(BenchCliTest, ReportOnlyFillsPerFrameFiguresFromTheEvalJsonInTheWorkFolder)
             std::string::npos)
       << run.err;
   const std::string md = testing::ReadFile(dir.File("bench/RESULTS.md"));
-  EXPECT_NE(md.find("| fake | 3-arc | HEVC q40 L1 | 14 bits | 9/10 (90.0%) missed | 7: 1.55x "
+  EXPECT_NE(md.find("| fake | 3-arc | AV1 q40 L1 | 14 bits | 9/10 (90.0%) missed | 7: 1.55x "
                     "(3.1 vs 2) | 35.00 vs 45.00 dB missed |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| fake | 6-ring | HEVC q40 L1 | 14 bits | n/a (no per-frame figures) | n/a | "
+  EXPECT_NE(md.find("| fake | 6-ring | AV1 q40 L1 | 14 bits | n/a (no per-frame figures) | n/a | "
                     "35.00 vs 45.00 dB missed |"),
             std::string::npos)
       << md;

@@ -24,7 +24,7 @@ BenchPoint* Point(BenchRecord& r, const char* method, const char* codec, int qua
 }
 
 TEST(BenchDivergenceTest, DefaultsAreTheEncoders) {
-  EXPECT_EQ(DefaultCodecName(), "hevc");
+  EXPECT_EQ(DefaultCodecName(), "av1");
   EXPECT_EQ(DefaultQuality(), 40);
 }
 
@@ -35,9 +35,9 @@ TEST(BenchDivergenceTest, ShareWithinWorstFrameAndPsnrOfTheFakeRecord) {
   EXPECT_TRUE(d.has_baseline);
   EXPECT_TRUE(d.has_frames);
   EXPECT_EQ(d.note, "");
-  EXPECT_EQ(d.codec, "hevc");
+  EXPECT_EQ(d.codec, "av1");
   EXPECT_EQ(d.quality, 40);
-  EXPECT_EQ(d.level, 1);  // the finest level of the HEVC q40 points
+  EXPECT_EQ(d.level, 1);  // the finest level of the AV1 q40 points
   EXPECT_EQ(d.baseline_bits, 14);
   EXPECT_EQ(d.psnr, kPsnrMeanOfFrames);
   EXPECT_EQ(d.frames, 10);
@@ -52,7 +52,7 @@ TEST(BenchDivergenceTest, ShareWithinWorstFrameAndPsnrOfTheFakeRecord) {
   EXPECT_DOUBLE_EQ(d.baseline_d1_psnr, 45);
   EXPECT_FALSE(d.psnr_met);
   const std::string line = DescribeDivergence(d);
-  EXPECT_NE(line.find("hevc q40 L1 against the baseline's 14 bits: 9/10 frames within 1.25x "
+  EXPECT_NE(line.find("av1 q40 L1 against the baseline's 14 bits: 9/10 frames within 1.25x "
                       "(90.0%, goal 95%: missed), worst frame 7 (1.55x"),
             std::string::npos)
       << line;
@@ -61,7 +61,7 @@ TEST(BenchDivergenceTest, ShareWithinWorstFrameAndPsnrOfTheFakeRecord) {
 
 TEST(BenchDivergenceTest, GoalsAreMetAtTheLimitAndAFrameWithoutAFigureCountsAgainst) {
   BenchRecord r = testing::FakeRecord();
-  BenchPoint* m = Point(r, kMethodMeshvid, "hevc", 40, 1);
+  BenchPoint* m = Point(r, kMethodMeshvid, "av1", 40, 1);
   BenchPoint* b = Point(r, kMethodBaseline, "draco", 14, -1);
   b->frame_accuracy_rms.assign(10, 0.5);
   m->frame_accuracy_rms.assign(10, 0.25);
@@ -114,18 +114,18 @@ TEST(BenchDivergenceTest, GoalsAreMetAtTheLimitAndAFrameWithoutAFigureCountsAgai
 
 TEST(BenchDivergenceTest, TheDefaultPointIsTheDefaultEncodeAtItsFinestLevel) {
   BenchRecord r = testing::FakeRecord();
-  // Without the HEVC q40 encode in the record: the finest level among its points.
+  // Without the AV1 q40 encode in the record: the finest level among its points.
   EXPECT_EQ(DefaultPointLevel(r), 1);
   const BenchPoint* found = FindDefaultPoint(r);
   ASSERT_NE(found, nullptr);
-  EXPECT_EQ(found->codec, "hevc");
+  EXPECT_EQ(found->codec, "av1");
   EXPECT_EQ(found->quality, 40);
   EXPECT_EQ(found->level, 1);
-  // Not another quality, codec or level: an AV1 q40 point at a finer level changes nothing.
-  BenchPoint av1 = *found;
-  av1.codec = "av1";
-  av1.level = 3;
-  UpsertPoint(r, av1);
+  // Not another quality, codec or level: an HEVC q40 point at a finer level changes nothing.
+  BenchPoint hevc = *found;
+  hevc.codec = "hevc";
+  hevc.level = 3;
+  UpsertPoint(r, hevc);
   BenchPoint q20 = *found;
   q20.quality = 20;
   q20.level = 2;
@@ -134,7 +134,7 @@ TEST(BenchDivergenceTest, TheDefaultPointIsTheDefaultEncodeAtItsFinestLevel) {
   // With the encode: the level its file stores, even if that point is missing.
   BenchEncode encode;
   encode.method = kMethodMeshvid;
-  encode.codec = "hevc";
+  encode.codec = "av1";
   encode.quality = 40;
   encode.ok = true;
   encode.levels = 2;
@@ -145,7 +145,7 @@ TEST(BenchDivergenceTest, TheDefaultPointIsTheDefaultEncodeAtItsFinestLevel) {
   EXPECT_FALSE(r.divergence.has_default);
   EXPECT_FALSE(r.divergence.has_frames);
   EXPECT_EQ(r.divergence.level, 2);
-  EXPECT_NE(r.divergence.note.find("no hevc q40 level 2 point"), std::string::npos)
+  EXPECT_NE(r.divergence.note.find("no av1 q40 level 2 point"), std::string::npos)
       << r.divergence.note;
   // Measured but failed: no check, and the note says so (no fallback to a coarser level).
   BenchPoint failed = *found;
@@ -154,9 +154,9 @@ TEST(BenchDivergenceTest, TheDefaultPointIsTheDefaultEncodeAtItsFinestLevel) {
   UpsertPoint(r, failed);
   ComputeDivergence(r);
   EXPECT_FALSE(r.divergence.has_default);
-  EXPECT_NE(r.divergence.note.find("hevc q40 level 2 failed"), std::string::npos)
+  EXPECT_NE(r.divergence.note.find("av1 q40 level 2 failed"), std::string::npos)
       << r.divergence.note;
-  FindPoint(r, kMethodMeshvid, "hevc", 40, 2)->ok = true;
+  FindPoint(r, kMethodMeshvid, "av1", 40, 2)->ok = true;
   ComputeDivergence(r);
   EXPECT_TRUE(r.divergence.has_default);
   EXPECT_EQ(r.divergence.level, 2);
@@ -237,15 +237,15 @@ TEST(BenchDivergenceTest, OlderPointsAreFilledFromTheirEvalJsonInTheWorkFolder) 
   EXPECT_NE(r.divergence.note.find("no per-frame figures"), std::string::npos);
 
   // The work folder holds the eval JSON of the default point and the baseline's best, and one
-  // of another evaluation (other means) for HEVC q20 level 1.
+  // of another evaluation (other means) for AV1 q20 level 1.
   BenchRecord copy = complete;
-  const BenchPoint& m = *Point(copy, kMethodMeshvid, "hevc", 40, 1);
+  const BenchPoint& m = *Point(copy, kMethodMeshvid, "av1", 40, 1);
   const BenchPoint& b = *Point(copy, kMethodBaseline, "draco", 14, -1);
-  BenchPoint other = *Point(copy, kMethodMeshvid, "hevc", 20, 1);
-  EXPECT_EQ(PointWorkStem(m), "hevc-q40-L1");
+  BenchPoint other = *Point(copy, kMethodMeshvid, "av1", 20, 1);
+  EXPECT_EQ(PointWorkStem(m), "av1-q40-L1");
   EXPECT_EQ(PointWorkStem(b), "draco-b14");
   const std::string work = dir.File("work");
-  EXPECT_EQ(EvalJsonPath(work, r, m), work + "/fake-3-arc/hevc-q40-L1.eval.json");
+  EXPECT_EQ(EvalJsonPath(work, r, m), work + "/fake-3-arc/av1-q40-L1.eval.json");
   std::filesystem::create_directories(work + "/fake-3-arc");
   testing::WriteFile(EvalJsonPath(work, r, m), testing::FakeEvalJson(m));
   testing::WriteFile(EvalJsonPath(work, r, b), testing::FakeEvalJson(b));
@@ -253,14 +253,14 @@ TEST(BenchDivergenceTest, OlderPointsAreFilledFromTheirEvalJsonInTheWorkFolder) 
   other.accuracy_rms *= 2;
   testing::WriteFile(other_path, testing::FakeEvalJson(other));
   EXPECT_EQ(BackfillFrameFigures(r, work), 2);
-  const BenchPoint& filled = *Point(r, kMethodMeshvid, "hevc", 40, 1);
+  const BenchPoint& filled = *Point(r, kMethodMeshvid, "av1", 40, 1);
   EXPECT_TRUE(HasFrameFigures(filled));
   EXPECT_EQ(filled.frame_accuracy_rms, m.frame_accuracy_rms);
   EXPECT_EQ(filled.frame_d1_psnr, m.frame_d1_psnr);
   EXPECT_TRUE(HasFrameFigures(*Point(r, kMethodBaseline, "draco", 14, -1)));
-  EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodMeshvid, "hevc", 20, 1)));  // not its eval
+  EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodMeshvid, "av1", 20, 1)));  // not its eval
   EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodBaseline, "draco", 8, -1)));  // no file
-  BenchPoint* q20 = Point(r, kMethodMeshvid, "hevc", 20, 1);
+  BenchPoint* q20 = Point(r, kMethodMeshvid, "av1", 20, 1);
   const Status mismatch = FillFrameFiguresFromEvalJson(other_path, q20);
   EXPECT_EQ(mismatch.code(), StatusCode::kInvalidArgument) << mismatch.ToString();
   EXPECT_FALSE(HasFrameFigures(*q20));

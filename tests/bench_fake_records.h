@@ -1,5 +1,5 @@
 // A small fake set of bench records for the bench_* tests: a baseline of four Draco points
-// and meshvid HEVC at exactly half the baseline's rate at every PSNR, plus one lossless point
+// and meshvid AV1 at exactly half the baseline's rate at every PSNR, plus one lossless point
 // and a failed step; per-frame figures, and the eval JSON they come from.
 #ifndef MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
 #define MESHVID_TESTS_BENCH_FAKE_RECORDS_H_
@@ -17,16 +17,16 @@
 
 namespace meshvid::testing {
 
-/// The record "fake-3-arc": baseline bits 8..14 at 30..45 dB; HEVC q20..q80 at level 1
+/// The record "fake-3-arc": baseline bits 8..14 at 30..45 dB; AV1 q20..q80 at level 1
 /// with half the rate at the same PSNRs (BD-rate -50%), at level 0 with a PSNR range that
-/// does not overlap; FFV1 lossless at PSNR inf (100 dB as the mean of frames); one failed AV1
+/// does not overlap; FFV1 lossless at PSNR inf (100 dB as the mean of frames); one failed HEVC
 /// encode. The PSNRs above are the means of frames; the PSNRs of the mean MSE are lower, by
 /// 1 dB for the baseline and 4 dB for meshvid (as if it had a few bad frames), so a BD-rate on
 /// them would differ.
 ///
 /// Per-frame figures (10 frames) of every point but the lossless one: the baseline's accuracy
 /// RMS is 0.002 on every frame; meshvid's 0.0022 (1.1x) but on frame 7, 0.0031 (1.55x); each
-/// frame's D1 PSNR is the point's mean of frames. So the divergence check (default point HEVC
+/// frame's D1 PSNR is the point's mean of frames. So the divergence check (default point AV1
 /// q40 at level 1, its finest; baseline best: 14 bits, 45 dB) finds 9 of 10 frames within
 /// 1.25x (missed), frame 7 the worst, and 35 against 45 dB (missed).
 inline BenchRecord FakeRecord() {
@@ -79,7 +79,7 @@ inline BenchRecord FakeRecord() {
 
     BenchPoint m = p;
     m.method = kMethodMeshvid;
-    m.codec = "hevc";
+    m.codec = "av1";
     m.quality = 20 + 20 * i;
     m.level = 1;
     m.d1_psnr = psnrs[i] - 4;
@@ -93,8 +93,8 @@ inline BenchRecord FakeRecord() {
     m.frame_accuracy_rms.assign(10, 0.0022);
     m.frame_accuracy_rms[7] = 0.0031;
     m.commands = {
-        "meshvid encode c -o hevc-q" + std::to_string(m.quality) + ".mvid -q",
-        "meshvid decode hevc-q" + std::to_string(m.quality) + ".mvid --level 1 --no-write -q"};
+        "meshvid encode c -o av1-q" + std::to_string(m.quality) + ".mvid -q",
+        "meshvid decode av1-q" + std::to_string(m.quality) + ".mvid --level 1 --no-write -q"};
     r.points.push_back(m);
     m.level = 0;
     m.d1_psnr_mean_of_frames = 20 + i;  // below every baseline point: no overlap
@@ -119,10 +119,10 @@ inline BenchRecord FakeRecord() {
   r.points.push_back(lossless);
   BenchEncode failed;
   failed.method = kMethodMeshvid;
-  failed.codec = "av1";
+  failed.codec = "hevc";
   failed.quality = 40;
   failed.error = "encode: exit code 1: out of cheese";
-  failed.command = "meshvid encode c -o av1-q40.mvid --codec av1 -q";
+  failed.command = "meshvid encode c -o hevc-q40.mvid --codec hevc -q";
   r.encodes.push_back(failed);
   ComputeBdRates(r);
   ComputeDivergence(r);

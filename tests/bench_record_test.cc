@@ -84,7 +84,7 @@ TEST(BenchRecordTest, JsonRoundTripKeepsEverything) {
   ASSERT_EQ(parsed->bd_rates.size(), record.bd_rates.size());
   // The divergence check.
   EXPECT_TRUE(parsed->divergence.has_frames);
-  EXPECT_EQ(parsed->divergence.codec, "hevc");
+  EXPECT_EQ(parsed->divergence.codec, "av1");
   EXPECT_EQ(parsed->divergence.level, 1);
   EXPECT_EQ(parsed->divergence.baseline_bits, 14);
   EXPECT_EQ(parsed->divergence.frames_within, 9);
@@ -102,7 +102,7 @@ TEST(BenchRecordTest, PerFrameFiguresAreOneLineEachRoundedToSixDigits) {
   BenchRecord record;
   BenchPoint p;
   p.method = kMethodMeshvid;
-  p.codec = "hevc";
+  p.codec = "av1";
   p.ok = true;
   p.frames = 4;
   p.frame_accuracy_rms = {0.00123456789, 0.5, 0, std::nan("")};
@@ -161,11 +161,11 @@ TEST(BenchRecordTest, RecordsWithoutPerFrameFiguresStillParse) {
 
 TEST(BenchRecordTest, BdRatesPerCodecAndLevelAgainstTheBaseline) {
   const BenchRecord record = testing::FakeRecord();
-  // HEVC levels 0 and 1; FFV1 has one point (no curve).
+  // AV1 levels 0 and 1; FFV1 has one point (no curve).
   ASSERT_EQ(record.bd_rates.size(), 2u);
   const BdRateEntry& level0 = record.bd_rates[0];
   const BdRateEntry& level1 = record.bd_rates[1];
-  EXPECT_EQ(level0.codec, "hevc");
+  EXPECT_EQ(level0.codec, "av1");
   EXPECT_EQ(level0.level, 0);
   EXPECT_FALSE(level0.ok);
   EXPECT_NE(level0.note.find("do not overlap"), std::string::npos) << level0.note;
@@ -298,7 +298,7 @@ TEST(BenchRecordTest, UpsertReplacesTheSamePoint) {
   BenchRecord record;
   BenchPoint p;
   p.method = kMethodMeshvid;
-  p.codec = "av1";
+  p.codec = "hevc";
   p.quality = 40;
   p.level = 2;
   p.error = "first try";
@@ -309,18 +309,18 @@ TEST(BenchRecordTest, UpsertReplacesTheSamePoint) {
   p.level = 1;
   UpsertPoint(record, p);
   ASSERT_EQ(record.points.size(), 2u);
-  ASSERT_NE(FindPoint(record, kMethodMeshvid, "av1", 40, 2), nullptr);
-  EXPECT_TRUE(FindPoint(record, kMethodMeshvid, "av1", 40, 2)->ok);
-  EXPECT_EQ(FindPoint(record, kMethodMeshvid, "av1", 40, 3), nullptr);
+  ASSERT_NE(FindPoint(record, kMethodMeshvid, "hevc", 40, 2), nullptr);
+  EXPECT_TRUE(FindPoint(record, kMethodMeshvid, "hevc", 40, 2)->ok);
+  EXPECT_EQ(FindPoint(record, kMethodMeshvid, "hevc", 40, 3), nullptr);
   BenchEncode e;
   e.method = kMethodMeshvid;
-  e.codec = "av1";
+  e.codec = "hevc";
   e.quality = 40;
   UpsertEncode(record, e);
   e.ok = true;
   UpsertEncode(record, e);
   ASSERT_EQ(record.encodes.size(), 1u);
-  EXPECT_TRUE(FindEncode(record, kMethodMeshvid, "av1", 40)->ok);
+  EXPECT_TRUE(FindEncode(record, kMethodMeshvid, "hevc", 40)->ok);
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   // Goal: best BD-rate -50% (not met), none against a decimated baseline (the fake record has
   // none), decode 600/30 = 20x (met), coverage 95% vs 90% (met).
   EXPECT_TRUE(Contains(
-      md, "| fake | 3-arc | -50.0% (HEVC L1) not met | n/a | 20.0x met | 95.0% vs 90.0% met |"))
+      md, "| fake | 3-arc | -50.0% (AV1 L1) not met | n/a | 20.0x met | 95.0% vs 90.0% met |"))
       << md;
   EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | | |"));
   // The still of the default point's worst frame, beside the RD plot.
@@ -54,10 +54,10 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   EXPECT_TRUE(
       Contains(md, "| reference | codec | level | BD-rate | D1 PSNR | over D1 PSNR | note |"));
   EXPECT_TRUE(
-      Contains(md, "| baseline | HEVC | 1 | **-50.0%** | mean of frames | 30.00 - 45.00 dB |  |"))
+      Contains(md, "| baseline | AV1 | 1 | **-50.0%** | mean of frames | 30.00 - 45.00 dB |  |"))
       << md;
   EXPECT_TRUE(Contains(
-      md, "| baseline | HEVC | 0 | n/a | mean of frames |  | the PSNR ranges do not overlap"));
+      md, "| baseline | AV1 | 0 | n/a | mean of frames |  | the PSNR ranges do not overlap"));
   // Point rows: the baseline first, both averages of D1 and D2, PSNR inf printed as such.
   EXPECT_TRUE(Contains(md,
                        "| Mbit/s | D1 PSNR, mean of frames | D1 PSNR, mean MSE | "
@@ -66,10 +66,10 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
                        "| baseline | DRACO | 8 bits | - | 100000 | 20 | 30.00 | 29.00 | 34.00 | "
                        "33.00 | 2 | 4 | 90.0% | 0.4 | 30 | 250 | 250 |"))
       << md;
-  EXPECT_TRUE(Contains(md, "| meshvid | HEVC | q20 | 1 | 50000 | 10 | 30.00 | 26.00 |"));
+  EXPECT_TRUE(Contains(md, "| meshvid | AV1 | q20 | 1 | 50000 | 10 | 30.00 | 26.00 |"));
   EXPECT_TRUE(
       Contains(md, "| meshvid | FFV1 | q100 | 1 | 900000 | 180 | 100.00 | inf | 71.00 | 70.00 |"));
-  EXPECT_LT(md.find("| baseline | DRACO | 8 bits"), md.find("| meshvid | HEVC | q20 | 1"));
+  EXPECT_LT(md.find("| baseline | DRACO | 8 bits"), md.find("| meshvid | AV1 | q20 | 1"));
   EXPECT_TRUE(Contains(md, "![D1 PSNR, mean of frames, against rate, fake-3-arc]"
                            "(results/fake-3-arc-rd.png)"));
   // How both averages are measured, and which one BD-rate uses.
@@ -78,13 +78,13 @@ TEST(BenchReportTest, ResultsMarkdownHasTablesGoalCommandsAndMachine) {
   EXPECT_TRUE(Contains(
       md, "against the baseline and against each decimated curve, on D1 PSNR, mean of frames"));
   EXPECT_FALSE(Contains(md, "This record predates"));
-  EXPECT_TRUE(Contains(md, "- av1 q40: encode: exit code 1: out of cheese"));
+  EXPECT_TRUE(Contains(md, "- hevc q40: encode: exit code 1: out of cheese"));
   EXPECT_TRUE(
       Contains(md, "meshvid simulate scene:fake -o work/fake-3-arc/capture --views 3 -q\n"));
-  EXPECT_TRUE(Contains(md, "meshvid decode hevc-q20.mvid --level 1 --no-write -q\n"));
+  EXPECT_TRUE(Contains(md, "meshvid decode av1-q20.mvid --level 1 --no-write -q\n"));
   // Only the first file's decode commands are listed; every encode is.
-  EXPECT_FALSE(Contains(md, "meshvid decode hevc-q40.mvid"));
-  EXPECT_TRUE(Contains(md, "meshvid encode c -o av1-q40.mvid --codec av1 -q\n"));
+  EXPECT_FALSE(Contains(md, "meshvid decode av1-q40.mvid"));
+  EXPECT_TRUE(Contains(md, "meshvid encode c -o hevc-q40.mvid --codec hevc -q\n"));
   // Deterministic.
   EXPECT_EQ(md, GenerateResultsMarkdown(records, FakeOptions()));
 }
@@ -95,7 +95,7 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   failed_sim.rig = "6-ring";
   BenchRecord met = testing::FakeRecord();
   met.rig = "6-ring";
-  BenchPoint* m = FindPoint(met, kMethodMeshvid, "hevc", 40, 1);
+  BenchPoint* m = FindPoint(met, kMethodMeshvid, "av1", 40, 1);
   ASSERT_NE(m, nullptr);
   m->frame_accuracy_rms.assign(10, 0.0021);
   m->frame_accuracy_rms[3] = 0.0024;
@@ -105,7 +105,7 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   no_frames->sequence = "older";
   const std::vector<BenchRecord> records = {testing::FakeRecord(), met, *no_frames, failed_sim};
   const std::string md = GenerateResultsMarkdown(records, FakeOptions());
-  EXPECT_TRUE(Contains(md, "## Divergence\n\nmeshvid at the encoder's default settings (HEVC, "
+  EXPECT_TRUE(Contains(md, "## Divergence\n\nmeshvid at the encoder's default settings (AV1, "
                            "quality 40, decoded at the finest level its file stores)"))
       << md;
   EXPECT_TRUE(Contains(md, "Goals: the ratio is at most 1.25 on at least 95% of the frames"));
@@ -115,14 +115,14 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
                        "frames: default vs baseline best |"));
   // FakeRecord: 9 of 10 frames within 1.25x, frame 7 at 1.55x (3.1 against 2 mm), 35 against
   // 45 dB.
-  EXPECT_TRUE(Contains(md, "| fake | 3-arc | HEVC q40 L1 | 14 bits | 9/10 (90.0%) missed | "
+  EXPECT_TRUE(Contains(md, "| fake | 3-arc | AV1 q40 L1 | 14 bits | 9/10 (90.0%) missed | "
                            "7: 1.55x (3.1 vs 2) | 35.00 vs 45.00 dB missed |"))
       << md;
-  EXPECT_TRUE(Contains(md, "| fake | 6-ring | HEVC q40 L1 | 14 bits | 10/10 (100.0%) met | "
+  EXPECT_TRUE(Contains(md, "| fake | 6-ring | AV1 q40 L1 | 14 bits | 10/10 (100.0%) met | "
                            "3: 1.2x (2.4 vs 2) | 45.50 vs 45.00 dB met |"))
       << md;
   // A record without per-frame figures still compares the D1 PSNRs, and says why not more.
-  EXPECT_TRUE(Contains(md, "| older | 3-arc | HEVC q40 L1 | 14 bits | n/a (no per-frame "
+  EXPECT_TRUE(Contains(md, "| older | 3-arc | AV1 q40 L1 | 14 bits | n/a (no per-frame "
                            "figures) | n/a | 35.00 vs 45.00 dB missed |"))
       << md;
   EXPECT_TRUE(Contains(md, "- older 3-arc: no per-frame figures for the default point"));
@@ -134,9 +134,9 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   BenchRecord no_default = testing::FakeRecord();
   for (BenchPoint& p : no_default.points) p.quality = p.quality == 40 ? 45 : p.quality;
   const std::string md2 = GenerateResultsMarkdown({no_default}, FakeOptions());
-  EXPECT_TRUE(Contains(md2, "| fake | 3-arc | HEVC q40 (n/a) | 14 bits | n/a | n/a | n/a |"))
+  EXPECT_TRUE(Contains(md2, "| fake | 3-arc | AV1 q40 (n/a) | 14 bits | n/a | n/a | n/a |"))
       << md2;
-  EXPECT_TRUE(Contains(md2, "- fake 3-arc: no hevc q40 point"));
+  EXPECT_TRUE(Contains(md2, "- fake 3-arc: no av1 q40 point"));
 }
 
 TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
@@ -144,7 +144,7 @@ TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
   ASSERT_TRUE(older.ok()) << older.status().ToString();
   const std::string md = GenerateResultsMarkdown({*older}, FakeOptions());
   EXPECT_TRUE(
-      Contains(md, "| HEVC | 1 | **-24.2%** | mean MSE (older record) | 29.00 - 41.00 dB |"))
+      Contains(md, "| AV1 | 1 | **-24.2%** | mean MSE (older record) | 29.00 - 41.00 dB |"))
       << md;
   EXPECT_TRUE(Contains(md, "| baseline | DRACO | 8 bits | - | 100000 | 20 | n/a | 29.00 | n/a | "
                            "33.00 |"));
@@ -175,8 +175,8 @@ TEST(BenchReportTest, PlotScriptHasEveryCurve) {
   EXPECT_TRUE(Contains(script, "set output \"fake-3-arc-rd.png\""));
   EXPECT_TRUE(Contains(script, "set logscale x"));
   EXPECT_TRUE(Contains(script, "title \"baseline: per-frame fusion + Draco\""));
-  EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L1\""));
-  EXPECT_TRUE(Contains(script, "title \"meshvid HEVC L0\""));
+  EXPECT_TRUE(Contains(script, "title \"meshvid AV1 L1\""));
+  EXPECT_TRUE(Contains(script, "title \"meshvid AV1 L0\""));
   EXPECT_TRUE(Contains(script, "set ylabel \"D1 PSNR, mean of frames (dB)\""));
   // The lossless point: exact frames, capped at 100 dB in the mean of frames, so drawable.
   EXPECT_TRUE(Contains(script, "title \"meshvid FFV1 L1 (lossless)\""));

@@ -103,7 +103,7 @@ struct FakeBench {
     options.meshvid = fake;
     options.sequences = {{"fake", "scene:fake", 0}};
     options.rigs = {{3, "arc"}};
-    options.codecs = {"hevc"};
+    options.codecs = {"av1"};
     options.qualities = {40, 66, 80};
     options.position_bits = {10, 14};
     options.decimated_bits = {};  // its own test turns it on
@@ -150,7 +150,7 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_EQ(b10->commands[1].rfind("meshvid bench-draco-decode ", 0), 0u) << b10->commands[1];
   EXPECT_DOUBLE_EQ(b10->encode_fps, 2 / 2.0);  // 2 frames / (0.5 + 1.0 + 0.5) s
   EXPECT_TRUE(std::isinf(b10->d2_psnr));
-  const BenchPoint* h80 = FindPoint(copy, kMethodMeshvid, "hevc", 80, 1);
+  const BenchPoint* h80 = FindPoint(copy, kMethodMeshvid, "av1", 80, 1);
   ASSERT_NE(h80, nullptr);
   EXPECT_DOUBLE_EQ(h80->bytes_per_frame, 4000);  // 8000-byte file, 2 frames
   EXPECT_DOUBLE_EQ(h80->d1_psnr, 39);
@@ -164,7 +164,7 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_DOUBLE_EQ(h80->frame_d1_psnr[0], 39);
   EXPECT_TRUE(std::isinf(h80->frame_d1_psnr[1]));
   EXPECT_EQ(b10->frame_accuracy_rms, (std::vector<double>{0.001, 0.001}));
-  // The divergence check: HEVC q40 at level 1 (the file's finest) against 14 bits (44 dB, the
+  // The divergence check: AV1 q40 at level 1 (the file's finest) against 14 bits (44 dB, the
   // baseline's highest): frame 1 at 2x, 37 against 44 dB.
   const DivergenceCheck& d = r.divergence;
   EXPECT_TRUE(d.has_default && d.has_baseline && d.has_frames) << d.note;
@@ -178,11 +178,11 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_DOUBLE_EQ(d.meshvid_d1_psnr, 37);
   EXPECT_DOUBLE_EQ(d.baseline_d1_psnr, 44);
   EXPECT_FALSE(d.psnr_met);
-  const BenchEncode* failed = FindEncode(copy, kMethodMeshvid, "hevc", 66);
+  const BenchEncode* failed = FindEncode(copy, kMethodMeshvid, "av1", 66);
   ASSERT_NE(failed, nullptr);
   EXPECT_FALSE(failed->ok);
   EXPECT_NE(failed->error.find("encoder exploded"), std::string::npos) << failed->error;
-  ASSERT_EQ(r.bd_rates.size(), 2u);  // hevc levels 0 and 1 (ffv1: one point)
+  ASSERT_EQ(r.bd_rates.size(), 2u);  // av1 levels 0 and 1 (ffv1: one point)
   EXPECT_EQ(r.bd_rates[0].psnr, kPsnrMeanOfFrames);
   bool logged_failure = false;
   for (const std::string& line : bench.log)
@@ -218,7 +218,7 @@ TEST(BenchRunnerTest, DecimatedBaselineIsSizedByTheDefaultPointAndGetsItsOwnBdRa
   auto records = RunBench(bench.options, bench.events);
   ASSERT_TRUE(records.ok()) << records.status().ToString();
   BenchRecord r = (*records)[0];
-  // The default point (HEVC q40 at its finest level) decodes 1000 vertices a frame.
+  // The default point (AV1 q40 at its finest level) decodes 1000 vertices a frame.
   std::string decimate_call;
   for (const std::string& call : bench.Calls()) {
     if (call.find("--decimate") != std::string::npos) decimate_call = call;
@@ -238,7 +238,7 @@ TEST(BenchRunnerTest, DecimatedBaselineIsSizedByTheDefaultPointAndGetsItsOwnBdRa
       EXPECT_DOUBLE_EQ(e->target_vertices, 1000 * multiple);
     }
   }
-  // BD-rates of each meshvid curve (HEVC levels 0 and 1) against the full baseline, then
+  // BD-rates of each meshvid curve (AV1 levels 0 and 1) against the full baseline, then
   // against each decimated curve.
   std::vector<std::string> references;
   for (const BdRateEntry& b : r.bd_rates) {
@@ -250,7 +250,7 @@ TEST(BenchRunnerTest, DecimatedBaselineIsSizedByTheDefaultPointAndGetsItsOwnBdRa
   EXPECT_FALSE(std::filesystem::exists(bench.options.work_dir + "/fake-3-arc/decimated/v1000-b8"));
   const std::string md = GenerateResultsMarkdown({r}, ReportOptions{});
   EXPECT_NE(md.find("| decimated | DRACO 1X | 8 bits, 1000 vertices |"), std::string::npos);
-  EXPECT_NE(md.find("| decimated draco 1x | HEVC | 1 |"), std::string::npos);
+  EXPECT_NE(md.find("| decimated draco 1x | AV1 | 1 |"), std::string::npos);
 
   // Again: nothing is run again.
   const std::size_t calls = bench.Calls().size();
@@ -291,7 +291,7 @@ TEST(BenchRunnerTest, AFileEncodedAgainIsEvaluatedAgain) {
   ASSERT_TRUE(RunBench(bench.options, bench.events).ok());
   // The q40 file is gone (deleted to measure a new encoder): encoded, decoded and evaluated
   // again at every level, not kept from the record.
-  const std::string file = bench.options.work_dir + "/fake-3-arc/hevc-q40.mvid";
+  const std::string file = bench.options.work_dir + "/fake-3-arc/av1-q40.mvid";
   ASSERT_TRUE(std::filesystem::remove(file));
   const std::size_t calls = bench.Calls().size();
   auto records = RunBench(bench.options, bench.events);
@@ -299,7 +299,7 @@ TEST(BenchRunnerTest, AFileEncodedAgainIsEvaluatedAgain) {
   const std::vector<std::string> after = bench.Calls();
   int encodes = 0, evals = 0;
   for (std::size_t i = calls; i < after.size(); ++i) {
-    const bool q40 = after[i].find("hevc-q40") != std::string::npos;
+    const bool q40 = after[i].find("av1-q40") != std::string::npos;
     encodes += q40 && after[i].rfind("encode ", 0) == 0;
     evals += q40 && after[i].rfind("eval ", 0) == 0;
   }
@@ -316,10 +316,10 @@ TEST(BenchRunnerTest, DrawsTheDefaultPointsWorstFrame) {
   const std::vector<std::string> calls = bench.Calls();
   const std::string& last = calls.back();
   EXPECT_EQ(last.rfind("render ", 0), 0u) << last;
-  // The capture, the default encode (hevc quality 40) at its level and the ground truth, the
+  // The capture, the default encode (av1 quality 40) at its level and the ground truth, the
   // worst frame only, coloured by distance to the ground truth.
   EXPECT_NE(last.find("capture/manifest.json --compare "), std::string::npos) << last;
-  EXPECT_NE(last.find("hevc-q40.mvid --compare "), std::string::npos) << last;
+  EXPECT_NE(last.find("av1-q40.mvid --compare "), std::string::npos) << last;
   const int worst = (*records)[0].divergence.worst_frame;
   EXPECT_NE(last.find("--frames " + std::to_string(std::max(worst, 0)) + ":"), std::string::npos)
       << last;
@@ -368,7 +368,7 @@ TEST(BenchRunnerTest, PointsWithoutPerFrameFiguresAreFilledFromTheirEvalJsonOrMe
   // its decoded frames being gone), the others filled.
   strip();
   const std::string work = bench.options.work_dir + "/fake-3-arc/";
-  ASSERT_TRUE(std::filesystem::remove(work + "hevc-q80-L1.eval.json"));
+  ASSERT_TRUE(std::filesystem::remove(work + "av1-q80-L1.eval.json"));
   ASSERT_TRUE(std::filesystem::remove(work + "draco-b10.eval.json"));
   calls = after.size();
   records = RunBench(bench.options, bench.events);
@@ -388,7 +388,7 @@ TEST(BenchRunnerTest, PointsWithoutPerFrameFiguresAreFilledFromTheirEvalJsonOrMe
   EXPECT_TRUE(
       logged("2 points were recorded without per-frame figures and their eval JSON is "
              "gone; measuring them again"));
-  EXPECT_TRUE(logged("divergence of hevc q40 L1 against the baseline's 14 bits: 1/2 frames"));
+  EXPECT_TRUE(logged("divergence of av1 q40 L1 against the baseline's 14 bits: 1/2 frames"));
 }
 
 TEST(BenchRunnerTest, StopsWhenProgressAsksAndKeepsWhatIsDone) {

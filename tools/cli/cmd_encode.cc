@@ -30,7 +30,7 @@ struct EncodeArguments {
   std::string capture;
   std::string output;
   std::string base_mesh;
-  std::string codec = "hevc";
+  std::string codec = "av1";
   std::string frames;
   std::string summary_json;
   std::vector<std::string> tune;  ///< --tune: KEY=VALUE, FILE.json or help
@@ -362,11 +362,14 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("-o,--out", args->output, "The .mvid file to write")->required();
   cmd->add_option("--frames", args->frames, "Frame range A:B (half-open), A:, :B or N")
       ->type_name("A:B");
-  cmd->add_option("--codec", args->codec, "Displacement video codec: hevc, av1 or ffv1")
+  cmd->add_option(
+         "--codec", args->codec,
+         "Displacement video codec: av1 (the default: the smallest files, and the one browsers "
+         "decode), hevc or ffv1 (lossless)")
       ->capture_default_str();
   cmd->add_option("--quality", o.quality,
-                  "0 (smallest) .. 100 (finest); sets the video quantiser (HEVC QP = "
-                  "51 x (1 - q/100)); FFV1 is lossless")
+                  "0 (smallest) .. 100 (finest); sets the video quantiser (AV1 CRF = "
+                  "63 x (1 - q/100), HEVC QP = 51 x (1 - q/100)); FFV1 is lossless")
       ->capture_default_str();
   cmd->add_option("--levels", o.levels,
                   "Subdivision levels of the displacement lattice: the finest resolution a "

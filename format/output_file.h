@@ -29,6 +29,9 @@ class OutputFile {
   std::ostream& stream() { return stream_; }
   /// The target path, as given to Open().
   const std::string& path() const { return path_; }
+  /// The temporary file the bytes go to until Commit(): a caller may read it back (after
+  /// flushing stream()) to check what it wrote before the target appears.
+  const std::string& temporary_path() const { return temporary_; }
   /// Closes the temporary and renames it onto path(); kIoError if a write failed (disk full).
   Status Commit();
 

@@ -258,7 +258,7 @@ TEST(BenchDivergenceTest, OlderPointsAreFilledFromTheirEvalJsonInTheWorkFolder) 
   EXPECT_EQ(filled.frame_accuracy_rms, m.frame_accuracy_rms);
   EXPECT_EQ(filled.frame_d1_psnr, m.frame_d1_psnr);
   EXPECT_TRUE(HasFrameFigures(*Point(r, kMethodBaseline, "draco", 14, -1)));
-  EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodMeshvid, "av1", 20, 1)));  // not its eval
+  EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodMeshvid, "av1", 20, 1)));     // not its eval
   EXPECT_FALSE(HasFrameFigures(*Point(r, kMethodBaseline, "draco", 8, -1)));  // no file
   BenchPoint* q20 = Point(r, kMethodMeshvid, "av1", 20, 1);
   const Status mismatch = FillFrameFiguresFromEvalJson(other_path, q20);

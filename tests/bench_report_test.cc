@@ -105,8 +105,9 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   no_frames->sequence = "older";
   const std::vector<BenchRecord> records = {testing::FakeRecord(), met, *no_frames, failed_sim};
   const std::string md = GenerateResultsMarkdown(records, FakeOptions());
-  EXPECT_TRUE(Contains(md, "## Divergence\n\nmeshvid at the encoder's default settings (AV1, "
-                           "quality 40, decoded at the finest level its file stores)"))
+  EXPECT_TRUE(Contains(md,
+                       "## Divergence\n\nmeshvid at the encoder's default settings (AV1, "
+                       "quality 40, decoded at the finest level its file stores)"))
       << md;
   EXPECT_TRUE(Contains(md, "Goals: the ratio is at most 1.25 on at least 95% of the frames"));
   EXPECT_TRUE(Contains(md,
@@ -115,15 +116,18 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
                        "frames: default vs baseline best |"));
   // FakeRecord: 9 of 10 frames within 1.25x, frame 7 at 1.55x (3.1 against 2 mm), 35 against
   // 45 dB.
-  EXPECT_TRUE(Contains(md, "| fake | 3-arc | AV1 q40 L1 | 14 bits | 9/10 (90.0%) missed | "
-                           "7: 1.55x (3.1 vs 2) | 35.00 vs 45.00 dB missed |"))
+  EXPECT_TRUE(Contains(md,
+                       "| fake | 3-arc | AV1 q40 L1 | 14 bits | 9/10 (90.0%) missed | "
+                       "7: 1.55x (3.1 vs 2) | 35.00 vs 45.00 dB missed |"))
       << md;
-  EXPECT_TRUE(Contains(md, "| fake | 6-ring | AV1 q40 L1 | 14 bits | 10/10 (100.0%) met | "
-                           "3: 1.2x (2.4 vs 2) | 45.50 vs 45.00 dB met |"))
+  EXPECT_TRUE(Contains(md,
+                       "| fake | 6-ring | AV1 q40 L1 | 14 bits | 10/10 (100.0%) met | "
+                       "3: 1.2x (2.4 vs 2) | 45.50 vs 45.00 dB met |"))
       << md;
   // A record without per-frame figures still compares the D1 PSNRs, and says why not more.
-  EXPECT_TRUE(Contains(md, "| older | 3-arc | AV1 q40 L1 | 14 bits | n/a (no per-frame "
-                           "figures) | n/a | 35.00 vs 45.00 dB missed |"))
+  EXPECT_TRUE(Contains(md,
+                       "| older | 3-arc | AV1 q40 L1 | 14 bits | n/a (no per-frame "
+                       "figures) | n/a | 35.00 vs 45.00 dB missed |"))
       << md;
   EXPECT_TRUE(Contains(md, "- older 3-arc: no per-frame figures for the default point"));
   EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | | | |"));
@@ -134,8 +138,7 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   BenchRecord no_default = testing::FakeRecord();
   for (BenchPoint& p : no_default.points) p.quality = p.quality == 40 ? 45 : p.quality;
   const std::string md2 = GenerateResultsMarkdown({no_default}, FakeOptions());
-  EXPECT_TRUE(Contains(md2, "| fake | 3-arc | AV1 q40 (n/a) | 14 bits | n/a | n/a | n/a |"))
-      << md2;
+  EXPECT_TRUE(Contains(md2, "| fake | 3-arc | AV1 q40 (n/a) | 14 bits | n/a | n/a | n/a |")) << md2;
   EXPECT_TRUE(Contains(md2, "- fake 3-arc: no av1 q40 point"));
 }
 
@@ -143,8 +146,7 @@ TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
   const auto older = ParseBenchRecord(testing::OlderFakeRecordJson(), "fake-3-arc.json");
   ASSERT_TRUE(older.ok()) << older.status().ToString();
   const std::string md = GenerateResultsMarkdown({*older}, FakeOptions());
-  EXPECT_TRUE(
-      Contains(md, "| AV1 | 1 | **-24.2%** | mean MSE (older record) | 29.00 - 41.00 dB |"))
+  EXPECT_TRUE(Contains(md, "| AV1 | 1 | **-24.2%** | mean MSE (older record) | 29.00 - 41.00 dB |"))
       << md;
   EXPECT_TRUE(Contains(md, "| baseline | DRACO | 8 bits | - | 100000 | 20 | n/a | 29.00 | n/a | "
                            "33.00 |"));

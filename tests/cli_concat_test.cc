@@ -13,6 +13,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "format/container_writer.h"
 #include "format/output_file.h"
+#include "tests/decoder_test_util.h"
 #include "tests/test_util.h"
 
 namespace meshvid {
@@ -21,12 +22,6 @@ namespace {
 /// 12 frames in groups 0-2, 3-4 | 5-7, 8 | 9-11 (key groups at frames 0, 5 and 9, whose
 /// pictures differ in size).
 const std::string kThreeKeyGroups = std::string(MESHVID_GOLDEN_DIR) + "/sphere.v2.mvid";
-
-std::unique_ptr<MvidDecoder> OpenDecoder(const std::string& path) {
-  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(path);
-  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
-  return decoder.ok() ? *std::move(decoder) : nullptr;
-}
 
 TEST(ConcatCliTest, PiecesCutFromAFileJoinBackIntoItByteForByte) {
   MESHVID_REQUIRE_CLI();
@@ -44,7 +39,7 @@ TEST(ConcatCliTest, PiecesCutFromAFileJoinBackIntoItByteForByte) {
     joined_inputs += " '" + dir.File(name) + "'";
   }
   // The second piece starts at key group 1: its header gives that key group's picture size.
-  std::unique_ptr<MvidDecoder> second = OpenDecoder(dir.File("p2.mvid"));
+  std::unique_ptr<MvidDecoder> second = testing::OpenDecoderOrFail(dir.File("p2.mvid"));
   ASSERT_NE(second, nullptr);
   EXPECT_EQ(second->info().frame_count, 4u);
   EXPECT_EQ(second->info().picture_height, 24);
@@ -67,8 +62,8 @@ TEST(ConcatCliTest, ACutRoundsOutToItsGroupsSaysSoAndDecodesAsThoseFrames) {
       "cut '" + kThreeKeyGroups + "' --frames 4:10 -o '" + dir.File("cut.mvid") + "'", dir);
   ASSERT_EQ(cut.exit_code, 0) << cut.err;
   EXPECT_NE(cut.err.find("frames 4:10 rounded out to 3:12"), std::string::npos) << cut.err;
-  std::unique_ptr<MvidDecoder> original = OpenDecoder(kThreeKeyGroups);
-  std::unique_ptr<MvidDecoder> part = OpenDecoder(dir.File("cut.mvid"));
+  std::unique_ptr<MvidDecoder> original = testing::OpenDecoderOrFail(kThreeKeyGroups);
+  std::unique_ptr<MvidDecoder> part = testing::OpenDecoderOrFail(dir.File("cut.mvid"));
   ASSERT_NE(original, nullptr);
   ASSERT_NE(part, nullptr);
   ASSERT_EQ(part->info().frame_count, 9u);

@@ -13,6 +13,7 @@
 
 #include "codec/dec/mvid_decoder.h"
 #include "format/container_reader.h"
+#include "tests/decoder_test_util.h"
 #include "tests/test_util.h"
 
 namespace meshvid {
@@ -20,12 +21,6 @@ namespace {
 
 /// FFV1, 12 frames in 3 key groups whose pictures differ in size.
 const std::string kThreeKeyGroups = std::string(MESHVID_GOLDEN_DIR) + "/sphere.v2.mvid";
-
-std::unique_ptr<MvidDecoder> OpenDecoder(const std::string& path) {
-  StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(path);
-  EXPECT_TRUE(decoder.ok()) << decoder.status().message();
-  return decoder.ok() ? *std::move(decoder) : nullptr;
-}
 
 /// Largest distance between corresponding vertices of every frame at every level; the
 /// triangles must be the same.
@@ -75,8 +70,8 @@ TEST(TranscodeCliTest, Av1KeepsBaseMotionAndTransformsAndMovesVerticesByTheVideo
     EXPECT_EQ(*before->ReadBase(k), *after->ReadBase(k)) << "key group " << k;
     EXPECT_EQ(*before->ReadMotion(k), *after->ReadMotion(k)) << "key group " << k;
   }
-  std::unique_ptr<MvidDecoder> original = OpenDecoder(kThreeKeyGroups);
-  std::unique_ptr<MvidDecoder> transcoded = OpenDecoder(out);
+  std::unique_ptr<MvidDecoder> original = testing::OpenDecoderOrFail(kThreeKeyGroups);
+  std::unique_ptr<MvidDecoder> transcoded = testing::OpenDecoderOrFail(out);
   ASSERT_NE(original, nullptr);
   ASSERT_NE(transcoded, nullptr);
   for (std::uint32_t f = 0; f < 12; ++f) {
@@ -103,8 +98,8 @@ TEST(TranscodeCliTest, Ffv1ToFfv1ChangesNoPosition) {
       testing::RunMeshvid("transcode '" + kThreeKeyGroups + "' --codec ffv1 -o '" + out + "'", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.err.find("moved by 0 RMS, 0 at most"), std::string::npos) << run.err;
-  std::unique_ptr<MvidDecoder> original = OpenDecoder(kThreeKeyGroups);
-  std::unique_ptr<MvidDecoder> transcoded = OpenDecoder(out);
+  std::unique_ptr<MvidDecoder> original = testing::OpenDecoderOrFail(kThreeKeyGroups);
+  std::unique_ptr<MvidDecoder> transcoded = testing::OpenDecoderOrFail(out);
   ASSERT_NE(original, nullptr);
   ASSERT_NE(transcoded, nullptr);
   EXPECT_EQ(LargestMove(*original, *transcoded), 0.0);

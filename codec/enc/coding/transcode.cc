@@ -52,17 +52,19 @@ Status RecodeGroup(MvidDecoder& source, const VideoEncoding& settings, GroupOfFr
   return Status::Ok();
 }
 
-/// Decodes every frame's displacements from both files and measures how far they moved.
-Status MeasureChange(const std::string& input, const std::string& output,
+/// Decodes every frame's displacements from the input (`before`, already open) and from the
+/// written bytes at `written` (the output's temporary file; `output` names it in errors), and
+/// measures how far they moved.
+Status MeasureChange(MvidDecoder& before, const std::string& written, const std::string& output,
                      const ProgressCallback& progress, TranscodeSummary* summary) {
-  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidDecoder> before, MvidDecoder::OpenFile(input));
-  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidDecoder> after, MvidDecoder::OpenFile(output));
+  StatusOr<std::unique_ptr<MvidDecoder>> after = MvidDecoder::OpenFile(written);
+  if (!after.ok()) return after.status().WithContext(output);
   std::vector<float> a, b;
   double sum_squares = 0;
   std::uint64_t samples = 0;
   for (std::uint32_t frame = 0; frame < summary->frames; ++frame) {
-    MESHVID_RETURN_IF_ERROR(before->DecodeDisplacements(frame, &a));
-    MESHVID_RETURN_IF_ERROR(after->DecodeDisplacements(frame, &b));
+    MESHVID_RETURN_IF_ERROR(before.DecodeDisplacements(frame, &a));
+    MESHVID_RETURN_IF_ERROR((*after)->DecodeDisplacements(frame, &b).WithContext(output));
     if (a.size() != b.size()) {
       return InternalError(output + ": frame " + std::to_string(frame) + " has " +
                            std::to_string(b.size()) + " displacements, the input " +
@@ -132,8 +134,12 @@ StatusOr<TranscodeSummary> TranscodeVideo(const std::string& input, const std::s
   MESHVID_RETURN_IF_ERROR(CopyGofs(reader, 0, reader.gof_count(), writer, recode));
   MESHVID_RETURN_IF_ERROR(writer.Finish());
   summary.output_bytes = writer.bytes_written();
+  // Measured on the written bytes before they become the output: a file that does not decode
+  // is never left behind.
+  if (!file->stream().flush()) return IoError(output + ": write failed");
+  MESHVID_RETURN_IF_ERROR(
+      MeasureChange(*source, file->temporary_path(), output, options.progress, &summary));
   MESHVID_RETURN_IF_ERROR(file->Commit());
-  MESHVID_RETURN_IF_ERROR(MeasureChange(input, output, options.progress, &summary));
   return summary;
 }
 

@@ -15,24 +15,39 @@ $s0 << EOD
 37.1104 36.5962
 EOD
 $s1 << EOD
-6.71947 36.6367
-10.2942 36.5998
-15.793 36.5955
+5.94668 36.6358
+9.0658 36.5995
+13.8347 36.5964
 EOD
 $s2 << EOD
+0.665653 36.5179
+1.37942 36.4759
+EOD
+$s3 << EOD
+0.665653 36.5137
+1.37942 36.4774
+EOD
+$s4 << EOD
+0.665653 36.5257
+1.37942 36.4818
+EOD
+$s5 << EOD
 0.74403 36.4925
 1.99632 36.5045
 EOD
-$s3 << EOD
+$s6 << EOD
 0.74403 36.4931
 1.99632 36.5098
 EOD
-$s4 << EOD
+$s7 << EOD
 0.74403 36.4989
 1.99632 36.5208
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -20,19 +20,34 @@ $s1 << EOD
 17.8726 52.5246
 EOD
 $s2 << EOD
+0.681617 52.6797
+1.66754 52.6480
+EOD
+$s3 << EOD
+0.681617 52.7319
+1.66754 52.6967
+EOD
+$s4 << EOD
+0.681617 52.7755
+1.66754 52.7444
+EOD
+$s5 << EOD
 0.746367 52.7790
 2.28689 52.4526
 EOD
-$s3 << EOD
+$s6 << EOD
 0.746367 52.8317
 2.28689 52.5139
 EOD
-$s4 << EOD
+$s7 << EOD
 0.746367 52.8877
 2.28689 52.5610
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -20,19 +20,34 @@ $s1 << EOD
 26.2735 35.0296
 EOD
 $s2 << EOD
+1.0152 34.6904
+1.43585 34.6884
+EOD
+$s3 << EOD
+1.0152 34.6949
+1.43585 34.6931
+EOD
+$s4 << EOD
+1.0152 34.7013
+1.43585 34.7022
+EOD
+$s5 << EOD
 0.82954 34.5916
 1.89956 34.5999
 EOD
-$s3 << EOD
+$s6 << EOD
 0.82954 34.6067
 1.89956 34.6065
 EOD
-$s4 << EOD
+$s7 << EOD
 0.82954 34.6100
 1.89956 34.6163
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -20,19 +20,34 @@ $s1 << EOD
 19.0823 55.0040
 EOD
 $s2 << EOD
+1.33443 54.8207
+2.37847 55.0305
+EOD
+$s3 << EOD
+1.33443 54.9284
+2.37847 55.1329
+EOD
+$s4 << EOD
+1.33443 55.0179
+2.37847 55.2092
+EOD
+$s5 << EOD
 1.69958 54.7916
 3.86325 55.0236
 EOD
-$s3 << EOD
+$s6 << EOD
 1.69958 54.9174
 3.86325 55.1354
 EOD
-$s4 << EOD
+$s7 << EOD
 1.69958 55.0168
 3.86325 55.2113
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

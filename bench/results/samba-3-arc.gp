@@ -15,24 +15,39 @@ $s0 << EOD
 68.3818 38.7496
 EOD
 $s1 << EOD
-5.94115 38.7808
-8.60554 38.7483
-12.8068 38.7429
+6.60595 38.7813
+9.45093 38.7515
+14.2655 38.7430
 EOD
 $s2 << EOD
+0.730167 38.5518
+1.25602 38.6257
+EOD
+$s3 << EOD
+0.730167 38.5561
+1.25602 38.6324
+EOD
+$s4 << EOD
+0.730167 38.5585
+1.25602 38.6358
+EOD
+$s5 << EOD
 0.848157 38.5614
 2.03212 38.6350
 EOD
-$s3 << EOD
+$s6 << EOD
 0.848157 38.5640
 2.03212 38.6441
 EOD
-$s4 << EOD
+$s7 << EOD
 0.848157 38.5732
 2.03212 38.6516
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -15,24 +15,39 @@ $s0 << EOD
 113.724 56.2880
 EOD
 $s1 << EOD
-8.53295 56.2039
-12.3961 56.2619
-18.298 56.2654
+8.73433 56.1975
+12.6484 56.2620
+18.7304 56.2654
 EOD
 $s2 << EOD
+0.82509 56.0247
+1.55274 56.1182
+EOD
+$s3 << EOD
+0.82509 56.1712
+1.55274 56.2574
+EOD
+$s4 << EOD
+0.82509 56.2809
+1.55274 56.3567
+EOD
+$s5 << EOD
 0.897227 55.9087
 2.19698 56.0947
 EOD
-$s3 << EOD
+$s6 << EOD
 0.897227 56.0738
 2.19698 56.2445
 EOD
-$s4 << EOD
+$s7 << EOD
 0.897227 56.1957
 2.19698 56.3410
 EOD
 plot $s0 using 1:2 with linespoints lw 2 pt 5 ps 1.2 lc rgb "black" title "baseline: per-frame fusion + Draco", \
      $s1 using 1:2 with linespoints lw 2 dt 2 pt 4 ps 1.2 lc rgb "gray40" title "baseline decimated to meshvid's vertex count", \
-     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
-     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
-     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"
+     $s2 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#d62728" title "meshvid AV1 L0", \
+     $s3 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#d62728" title "meshvid AV1 L1", \
+     $s4 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#d62728" title "meshvid AV1 L2", \
+     $s5 using 1:2 with linespoints lw 1 dt 4 pt 10 lc rgb "#1f77b4" title "meshvid HEVC L0", \
+     $s6 using 1:2 with linespoints lw 1 dt 3 pt 8 lc rgb "#1f77b4" title "meshvid HEVC L1", \
+     $s7 using 1:2 with linespoints lw 2 dt 1 pt 7 lc rgb "#1f77b4" title "meshvid HEVC L2"

@@ -365,11 +365,16 @@ PYBIND11_MODULE(meshvid, m) {
       "file (fewer frames readable than its header promises) raises meshvid.Error, unless "
       "allow_partial=True: then it opens with a UserWarning and File.partial is True.");
 
-  m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "", py::arg("quality") = 40,
-        py::arg("codec") = "av1", py::arg("levels") = 2,
-        py::arg("rebase_gain_db") = kDefaultRebaseGainDb, py::arg("max_key_groups") = 0,
-        py::arg("frame_rate") = 25.0, py::arg("gof_size") = 32, py::arg("base_vertices") = 2000,
-        py::arg("effort") = 4, py::arg("progress") = py::none(), py::arg("tune") = py::none(),
+  // The defaults are EncoderOptions' own, as `meshvid encode`'s are.
+  const EncoderOptions defaults;
+  m.def("encode", &Encode, py::arg("frames"), py::arg("path") = "",
+        py::arg("quality") = defaults.quality,
+        py::arg("codec") = std::string(VideoCodecName(defaults.codec)),
+        py::arg("levels") = defaults.levels, py::arg("rebase_gain_db") = defaults.rebase_gain_db,
+        py::arg("max_key_groups") = defaults.max_key_groups, py::arg("frame_rate") = 25.0,
+        py::arg("gof_size") = defaults.gof_size, py::arg("base_vertices") = defaults.base_vertices,
+        py::arg("effort") = defaults.effort, py::arg("progress") = py::none(),
+        py::arg("tune") = py::none(),
         "Encodes a capture: `frames` is a list of frames, each a list of views "
         "(vertices (V, 3), triangles (F, 3)) in world coordinates. Returns the .mvid bytes "
         "(also written to `path` if given). Options as `meshvid encode`'s; `tune`, a dict of "

@@ -189,8 +189,9 @@ struct EncoderOptions {
   bool hide_unseen = false;
 
   // --- coding
-  /// AV1 by default: 24-45% fewer bytes than HEVC at the same accuracy at quality 40 on every
-  /// shared pair (bench/CODECS.md), and the codec browsers decode in software (WebCodecs).
+  /// AV1 by default: through the whole encoder at quality 40, 24-43% fewer bytes than HEVC on
+  /// every shared pair with D1 within 0.2 dB, at up to 7% worse accuracy side by side
+  /// (bench/CODECS.md); and the codec browsers decode in software (WebCodecs).
   VideoCodec codec = VideoCodec::kAv1;
   int quality = 40;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
   int effort = 4;                ///< video encoder effort 0..9

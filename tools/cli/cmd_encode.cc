@@ -30,7 +30,7 @@ struct EncodeArguments {
   std::string capture;
   std::string output;
   std::string base_mesh;
-  std::string codec = "av1";
+  std::string codec{VideoCodecName(EncoderOptions{}.codec)};  ///< --codec, the encoder's default
   std::string frames;
   std::string summary_json;
   std::vector<std::string> tune;  ///< --tune: KEY=VALUE, FILE.json or help

@@ -20,7 +20,7 @@ namespace {
 struct TranscodeArguments {
   std::string input;
   std::string output;
-  std::string codec = "av1";
+  std::string codec{VideoCodecName(TranscodeOptions{}.codec)};  ///< --codec, AV1 by default
   TranscodeOptions options;
   bool quiet = false;
 };
@@ -39,7 +39,7 @@ std::string TranscodedMetadata(const std::string& metadata, std::string_view fro
 int RunTranscode(TranscodeArguments& args) {
   const auto start = std::chrono::steady_clock::now();
   // --codec is checked by CLI11 against the names ParseVideoCodec knows.
-  args.options.codec = ParseVideoCodec(args.codec).value_or(VideoCodec::kAv1);
+  args.options.codec = ParseVideoCodec(args.codec).value_or(TranscodeOptions{}.codec);
   StatusOr<std::unique_ptr<MvidDecoder>> input = MvidDecoder::OpenFile(args.input);
   if (!input.ok()) return ReportError(input.status());
   const VideoCodec from = (*input)->info().codec;

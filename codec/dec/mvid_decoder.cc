@@ -2,10 +2,11 @@
 
 #include <algorithm>
 
-#include "codec/common/deformation_graph.h"
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/dec/gof_side_info.h"
+#include "codec/dec/key_group_geometry.h"
 #include "codec/dec/motion_decoder.h"
+#include "codec/dec/stream_header.h"
 #include "codec/dec/video_decoder.h"
 #include "format/stream_reader.h"
 
@@ -21,24 +22,13 @@ struct MvidDecoder::Group {
   std::vector<GreyPicture> pictures;  ///< in presentation order, one per frame
 };
 
-/// One decoded key group: its base mesh, motion and what is derived from them.
+/// One decoded key group: its geometry and the bytes it came from.
 struct MvidDecoder::KeyGroup {
+  KeyGroup(std::size_t index, KeyGroupGeometry geometry)
+      : index(index), geometry(std::move(geometry)) {}
   std::size_t index = 0;
-  TriangleMesh base;
-  MotionModel motion;
-  MotionQuantization quantization;
-  RegularSubdivision subdivision;
+  KeyGroupGeometry geometry;
   std::uint64_t base_bytes = 0, motion_bytes = 0;
-  std::map<DisplacementPacking, DisplacementLayout> layouts;
-  std::vector<std::vector<Triangle>> triangles;  ///< per level, filled on first use
-
-  /// Base triangles that are surface (all unless MOTN's mask hides some).
-  std::size_t SurfaceTriangleCount() const {
-    if (motion.surface_triangles.empty()) return base.triangle_count();
-    std::size_t count = 0;
-    for (std::uint8_t kept : motion.surface_triangles) count += kept != 0;
-    return count;
-  }
 };
 
 /// A key group's payloads as read from the input.
@@ -236,20 +226,8 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenStream(std::istream& in,
 
 Status MvidDecoder::ReadHeader(const ContainerHeader& header, const std::string& name) {
   name_ = name;
-  if (header.streams.size() != 1 || header.streams[0].name != "displacement" ||
-      header.streams[0].bit_depth != 10) {
-    return UnsupportedError(name + ": expected one 10-bit displacement video stream");
-  }
-  if (header.level_count > static_cast<std::uint32_t>(RegularSubdivision::kMaxLevels)) {
-    return CorruptError(name + ": " + std::to_string(header.level_count) + " levels");
-  }
   MvidInfo& info = info_;
-  const std::optional<VideoCodec> codec = ParseVideoCodecTag(header.streams[0].codec);
-  if (!codec) {
-    return UnsupportedError(name + ": video codec '" + header.streams[0].codec +
-                            "' is not supported");
-  }
-  info.codec = *codec;
+  MESHVID_ASSIGN_OR_RETURN(info.codec, CheckStreamHeader(header, name));
   info.frame_rate = double(header.frame_rate_numerator) / header.frame_rate_denominator;
   info.declared_frame_count = header.frame_count;
   info.gof_size = header.gof_size;
@@ -264,36 +242,25 @@ Status MvidDecoder::LoadKeyGroup(std::size_t k) {
   if (key_group_ && key_group_->index == k) return Status::Ok();
   const std::string context = name_ + ": key group " + std::to_string(k);
   MESHVID_ASSIGN_OR_RETURN(const KeyGroupBytes bytes, groups_->ReadKeyGroup(k));
-  auto key_group = std::make_unique<KeyGroup>();
-  key_group->index = k;
   StatusOr<TriangleMesh> base = DecodeBaseMesh(bytes.base);
   if (!base.ok()) return base.status().WithContext(context + " BASE");
-  key_group->base = std::move(*base);
-  StatusOr<DecodedMotion> decoded = DecodeMotionModel(
-      bytes.motion, key_group->base.vertex_count(), key_group->base.triangle_count());
-  if (!decoded.ok()) return decoded.status().WithContext(context + " MOTN");
-  DecodedMotion& motion = *decoded;
-  if (!motion.model.node_vertices.empty()) {
-    const Status derived = CompleteNodeBlends(key_group->base, &motion.model);
-    if (!derived.ok()) return derived.WithContext(context + " MOTN");
-  }
-  key_group->motion = std::move(motion.model);
-  key_group->quantization = motion.quantization;
-  MESHVID_ASSIGN_OR_RETURN(key_group->subdivision,
-                           RegularSubdivision::Create(key_group->base, info_.levels));
+  StatusOr<KeyGroupGeometry> geometry =
+      KeyGroupGeometry::Create(std::move(*base), bytes.motion, info_.levels);
+  if (!geometry.ok()) return geometry.status().WithContext(context + " MOTN");
+  auto key_group = std::make_unique<KeyGroup>(k, std::move(*geometry));
   key_group->base_bytes = bytes.base.size();
   key_group->motion_bytes = bytes.motion.size();
-  key_group->triangles.resize(info_.levels + 1);
+  const KeyGroupGeometry& loaded = key_group->geometry;
   if (k == 0 && info_.vertices_per_level.empty()) {
     MvidInfo& info = info_;
-    info.base_vertices = key_group->base.vertex_count();
-    info.base_triangles = key_group->base.triangle_count();
-    info.segments = key_group->motion.segment_count;
+    info.base_vertices = loaded.base().vertex_count();
+    info.base_triangles = loaded.base().triangle_count();
+    info.segments = loaded.motion().segment_count;
     info.base_bytes = key_group->base_bytes;
     info.motion_bytes = key_group->motion_bytes;
     for (int level = 0; level <= info.levels; ++level) {
-      info.vertices_per_level.push_back(key_group->subdivision.sample_count(level));
-      info.triangles_per_level.push_back(key_group->SurfaceTriangleCount() << (2 * level));
+      info.vertices_per_level.push_back(loaded.VertexCount(level));
+      info.triangles_per_level.push_back(loaded.SurfaceTriangleCount() << (2 * level));
     }
   }
   key_group_ = std::move(key_group);
@@ -304,9 +271,9 @@ std::uint32_t MvidDecoder::current_key_group() const {
   return static_cast<std::uint32_t>(key_group_->index);
 }
 
-const TriangleMesh& MvidDecoder::base_mesh() const { return key_group_->base; }
+const TriangleMesh& MvidDecoder::base_mesh() const { return key_group_->geometry.base(); }
 
-const MotionModel& MvidDecoder::motion() const { return key_group_->motion; }
+const MotionModel& MvidDecoder::motion() const { return key_group_->geometry.motion(); }
 
 StatusOr<std::uint32_t> MvidDecoder::KeyGroupOf(std::uint32_t frame) {
   if (ContainerReader* reader = groups_->reader()) {
@@ -328,34 +295,29 @@ StatusOr<MvidKeyGroupInfo> MvidDecoder::DescribeKeyGroup(std::uint32_t k) {
   MESHVID_RETURN_IF_ERROR(LoadKeyGroup(k));
   group_.reset();  // the current group must belong to the current key group
   const KeyGroup& key_group = *key_group_;
+  const KeyGroupGeometry& geometry = key_group.geometry;
   MvidKeyGroupInfo description;
   description.span = info_.key_groups[k];
-  description.base_vertices = key_group.base.vertex_count();
-  description.base_triangles = key_group.base.triangle_count();
-  description.segments = key_group.motion.segment_count;
+  description.base_vertices = geometry.base().vertex_count();
+  description.base_triangles = geometry.base().triangle_count();
+  description.segments = geometry.motion().segment_count;
   description.base_bytes = key_group.base_bytes;
   description.motion_bytes = key_group.motion_bytes;
   // The picture size follows from the base mesh and the packing; the reference encoder uses
   // lattice order.
-  const DisplacementLayout layout =
-      DisplacementLayout::ForSubdivision(key_group.subdivision, DisplacementPacking::kLatticeOrder);
+  const DisplacementLayout layout = DisplacementLayout::ForSubdivision(
+      geometry.subdivision(), DisplacementPacking::kLatticeOrder);
   description.picture_width = layout.width();
   description.picture_height = layout.height();
   for (int level = 0; level <= info_.levels; ++level) {
-    description.vertices_per_level.push_back(key_group.subdivision.sample_count(level));
-    description.triangles_per_level.push_back(key_group.SurfaceTriangleCount() << (2 * level));
+    description.vertices_per_level.push_back(geometry.VertexCount(level));
+    description.triangles_per_level.push_back(geometry.SurfaceTriangleCount() << (2 * level));
   }
   return description;
 }
 
 StatusOr<const DisplacementLayout*> MvidDecoder::LayoutFor(DisplacementPacking packing) {
-  auto& layouts = key_group_->layouts;
-  auto it = layouts.find(packing);
-  if (it == layouts.end()) {
-    it = layouts.emplace(packing, DisplacementLayout::ForSubdivision(key_group_->subdivision,
-                                                                     packing)).first;
-  }
-  const DisplacementLayout& layout = it->second;
+  const DisplacementLayout& layout = key_group_->geometry.Layout(packing);
   // HEAD's picture size is key group 0's; later key groups have the size of their layout.
   if (key_group_->index == 0 &&
       (layout.width() != info_.picture_width || layout.height() != info_.picture_height)) {
@@ -377,25 +339,7 @@ Status MvidDecoder::CheckLevel(int level) const {
 
 StatusOr<const std::vector<Triangle>*> MvidDecoder::Triangles(int level) {
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
-  KeyGroup& key_group = *key_group_;
-  std::vector<Triangle>& triangles = key_group.triangles[level];
-  if (triangles.empty()) {
-    triangles = key_group.subdivision.Triangles(level);
-    const std::vector<std::uint8_t>& surface = key_group.motion.surface_triangles;
-    if (!surface.empty()) {
-      // Level l has 4^l triangles per base triangle, base triangle by base triangle.
-      const std::size_t per_base = std::size_t(1) << (2 * level);
-      std::size_t kept = 0;
-      for (std::size_t t = 0; t < surface.size(); ++t) {
-        if (!surface[t]) continue;
-        for (std::size_t k = 0; k < per_base; ++k) {
-          triangles[kept++] = triangles[t * per_base + k];
-        }
-      }
-      triangles.resize(kept);
-    }
-  }
-  return &triangles;
+  return &key_group_->geometry.Triangles(level);
 }
 
 StatusOr<const std::vector<Triangle>*> MvidDecoder::TrianglesOf(std::uint32_t frame, int level) {
@@ -440,8 +384,8 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   group->first_frame = gof.first_frame;
   // Every error of the payload decoders below names the file and the group.
   StatusOr<GofSideInfo> side = DecodeGofSideInfo(gof.transforms, gof.frame_count,
-                                                 key_group_->motion.segment_count,
-                                                 key_group_->quantization);
+                                                 key_group_->geometry.motion().segment_count,
+                                                 key_group_->geometry.quantization());
   if (!side.ok()) return side.status().WithContext(context);
   group->side = std::move(*side);
   StatusOr<const DisplacementLayout*> layout = LayoutFor(group->side.packing);
@@ -497,7 +441,7 @@ Status MvidDecoder::DecodeDisplacements(std::uint32_t frame, std::vector<float>*
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
   group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range,
-                         key_group_->subdivision.samples().size(), displacements);
+                         key_group_->geometry.subdivision().samples().size(), displacements);
   return Status::Ok();
 }
 
@@ -511,18 +455,9 @@ Status MvidDecoder::DecodePositions(std::uint32_t frame, int level,
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
   const std::uint32_t local = frame - group_->first_frame;
-  const KeyGroup& key_group = *key_group_;
-  PoseVertices(key_group.motion, group_->side.transforms[local], key_group.base.positions,
-               &posed_);
-  ComputeVertexNormals(posed_, key_group.base.triangles, &normals_);
-  EvaluateSampleFrames(key_group.subdivision, level, posed_, normals_, &origins_, &directions_);
-  const std::size_t count = key_group.subdivision.sample_count(level);
-  group_->layout->Unpack(group_->pictures[local], group_->side.displacement_range, count,
-                         &displacements_);
-  positions->resize(count);
-  for (std::size_t s = 0; s < count; ++s) {
-    (*positions)[s] = origins_[s] + displacements_[s] * directions_[s];
-  }
+  key_group_->geometry.Positions(group_->side.transforms[local], group_->pictures[local],
+                                 *group_->layout, group_->side.displacement_range, level,
+                                 positions);
   return Status::Ok();
 }
 

@@ -178,9 +178,6 @@ class MvidDecoder {
   MvidInfo info_;
   std::unique_ptr<KeyGroup> key_group_;           ///< the key group in use
   std::unique_ptr<Group> group_;                  ///< the decoded group in use
-  // Scratch buffers reused across frames.
-  std::vector<Eigen::Vector3f> posed_, normals_, origins_, directions_;
-  std::vector<float> displacements_;
 };
 
 }  // namespace meshvid

@@ -45,6 +45,11 @@ std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
 StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint8_t> side_info,
                                                        std::span<const std::uint8_t> video_config);
 
+/// The video configuration record of side information `side_info`, read without its
+/// transforms (which need the key group's motion): a group's video can be decoded before its
+/// key group is. kCorrupt / kUnsupported if the fields before it do not parse.
+StatusOr<std::vector<std::uint8_t>> ReadVideoConfig(std::span<const std::uint8_t> side_info);
+
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_DEC_GOF_SIDE_INFO_H_

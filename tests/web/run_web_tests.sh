@@ -1,0 +1,45 @@
+#!/bin/sh
+# The WebAssembly decoder (web/build, made by scripts/setup) against the native one, on .mvid
+# files: native_reference writes what the native decoder makes of each; decoder_test.mjs runs
+# the WebAssembly decoder under Node.js on them all; browser_test.mjs runs it in headless
+# Chromium with WebCodecs on the AV1 ones, and on AV1 transcodes of the others (`meshvid
+# transcode`), which themselves must be refused with an error in the page; player_test.mjs
+# plays the last file in the player (web/player).
+# Usage: run_web_tests.sh NATIVE_REFERENCE MESHVID PROJECT_ROOT WORK_DIR FILE.mvid...
+# Exits 77 (skipped) when the WebAssembly decoder is not built.
+set -eu
+native_reference=$1 meshvid=$2 root=$3 work=$4
+shift 4
+if [ ! -f "$root/web/build/meshvid_wasm.mjs" ] || ! command -v node >/dev/null 2>&1; then
+  echo "skipped: the WebAssembly decoder is not built (scripts/setup builds it into web/build)"
+  exit 77
+fi
+rm -rf "$work"
+mkdir -p "$work"
+node_pairs="" browser_files="" unsupported=""
+for file in "$@"; do
+  name=$(basename "$file" .mvid)
+  cp "$file" "$work/$name.mvid"
+  "$native_reference" "$work/$name.mvid" "$work/$name.bin"
+  node_pairs="$node_pairs $work/$name.mvid $work/$name.bin"
+  if "$meshvid" info "$file" --json - | grep -q '"codec": *"av1"'; then
+    browser_files="$browser_files,$name.mvid"
+  else
+    unsupported="$unsupported,$name.mvid"
+    "$meshvid" transcode "$file" --codec av1 -o "$work/$name.av1.mvid" -q
+    "$native_reference" "$work/$name.av1.mvid" "$work/$name.av1.bin"
+    browser_files="$browser_files,$name.av1.mvid"
+  fi
+done
+here=$(dirname "$0")
+# shellcheck disable=SC2086  # the pairs are paths without spaces, split on purpose
+node "$here/decoder_test.mjs" "$root/web/build" $node_pairs
+browser=${MESHVID_CHROMIUM:-/usr/bin/chromium}
+if [ ! -x "$browser" ]; then
+  echo "the browser half is skipped: no Chromium at $browser (scripts/setup installs it)"
+  exit 0
+fi
+node "$here/browser_test.mjs" "$root" "$work" --files "${browser_files#,}" \
+  --unsupported "${unsupported#,}"
+# The player, on the last file (the fresh encode).
+node "$here/player_test.mjs" "$root" "$work" "$(basename "$file" .mvid).mvid"

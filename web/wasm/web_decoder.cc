@@ -25,8 +25,6 @@ using emscripten::val;
 /// One group of frames as the page decodes it: its side information, and its pictures, which
 /// the page writes (pictureAddress) from the video decoder's output.
 struct WebGroup {
-  std::size_t index = 0;
-  std::size_t key_group = 0;
   std::uint32_t first_frame = 0;
   GofSideInfo side;
   const DisplacementLayout* layout = nullptr;
@@ -229,8 +227,6 @@ class WasmDecoder {
   StatusOr<WebGroup> GroupOf(const GroupOfFrames& gof) {
     const std::string context = "file: group " + std::to_string(gof.gof_index);
     WebGroup group;
-    group.index = gof.gof_index;
-    group.key_group = key_group_;
     group.first_frame = gof.first_frame;
     StatusOr<GofSideInfo> side =
         DecodeGofSideInfo(gof.transforms, gof.frame_count, geometry_->motion().segment_count,

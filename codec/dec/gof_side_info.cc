@@ -40,6 +40,15 @@ StatusOr<SideInfoHead> ReadHead(ByteReader& reader) {
   return head;
 }
 
+/// `head`'s packing, kCorrupt (through `reader`) if it is none meshvid knows.
+StatusOr<DisplacementPacking> PackingOf(const SideInfoHead& head, const ByteReader& reader) {
+  if (head.packing != static_cast<std::uint8_t>(DisplacementPacking::kTriangleBlocks) &&
+      head.packing != static_cast<std::uint8_t>(DisplacementPacking::kLatticeOrder)) {
+    return reader.Error("unknown displacement_packing " + std::to_string(head.packing));
+  }
+  return static_cast<DisplacementPacking>(head.packing);
+}
+
 }  // namespace
 
 StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
@@ -48,11 +57,7 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
   ByteReader reader(bytes, "group side information");
   MESHVID_ASSIGN_OR_RETURN(const SideInfoHead head, ReadHead(reader));
   GofSideInfo info;
-  if (head.packing != static_cast<std::uint8_t>(DisplacementPacking::kTriangleBlocks) &&
-      head.packing != static_cast<std::uint8_t>(DisplacementPacking::kLatticeOrder)) {
-    return reader.Error("unknown displacement_packing " + std::to_string(head.packing));
-  }
-  info.packing = static_cast<DisplacementPacking>(head.packing);
+  MESHVID_ASSIGN_OR_RETURN(info.packing, PackingOf(head, reader));
   info.displacement_range.minimum = std::bit_cast<float>(head.minimum);
   info.displacement_range.step = std::bit_cast<float>(head.step);
   if (!std::isfinite(info.displacement_range.minimum) ||
@@ -96,10 +101,13 @@ StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint
   return writer.Release();
 }
 
-StatusOr<std::vector<std::uint8_t>> ReadVideoConfig(std::span<const std::uint8_t> side_info) {
+StatusOr<GofVideoHead> ReadGofVideoHead(std::span<const std::uint8_t> side_info) {
   ByteReader reader(side_info, "group side information");
   MESHVID_ASSIGN_OR_RETURN(const SideInfoHead head, ReadHead(reader));
-  return std::vector<std::uint8_t>(head.config.begin(), head.config.end());
+  GofVideoHead video;
+  MESHVID_ASSIGN_OR_RETURN(video.packing, PackingOf(head, reader));
+  video.video_config.assign(head.config.begin(), head.config.end());
+  return video;
 }
 
 }  // namespace meshvid

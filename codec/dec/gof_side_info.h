@@ -45,10 +45,17 @@ std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
 StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint8_t> side_info,
                                                        std::span<const std::uint8_t> video_config);
 
-/// The video configuration record of side information `side_info`, read without its
-/// transforms (which need the key group's motion): a group's video can be decoded before its
-/// key group is. kCorrupt / kUnsupported if the fields before it do not parse.
-StatusOr<std::vector<std::uint8_t>> ReadVideoConfig(std::span<const std::uint8_t> side_info);
+/// What a group's video decoder needs of its side information: the displacement packing (which
+/// with the key group gives the picture size) and the configuration record.
+struct GofVideoHead {
+  DisplacementPacking packing = DisplacementPacking::kTriangleBlocks;
+  std::vector<std::uint8_t> video_config;
+};
+
+/// The packing and video configuration record of side information `side_info`, read without
+/// its transforms (which need the key group's motion): a group's video can be decoded before
+/// its key group is. kCorrupt / kUnsupported if the fields before them do not parse.
+StatusOr<GofVideoHead> ReadGofVideoHead(std::span<const std::uint8_t> side_info);
 
 }  // namespace meshvid
 

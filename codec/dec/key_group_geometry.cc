@@ -62,6 +62,20 @@ const DisplacementLayout& KeyGroupGeometry::Layout(DisplacementPacking packing) 
   return it->second;
 }
 
+StatusOr<const DisplacementLayout*> KeyGroupGeometry::CheckedLayout(DisplacementPacking packing,
+                                                                    bool first_key_group,
+                                                                    int header_width,
+                                                                    int header_height) {
+  const DisplacementLayout& layout = Layout(packing);
+  if (first_key_group && (layout.width() != header_width || layout.height() != header_height)) {
+    return CorruptError("displacement picture is " + std::to_string(header_width) + "x" +
+                        std::to_string(header_height) + ", the packing of this base " +
+                        "mesh and level count needs " + std::to_string(layout.width()) + "x" +
+                        std::to_string(layout.height()));
+  }
+  return &layout;
+}
+
 void KeyGroupGeometry::Positions(std::span<const RigidTransform> transforms,
                                  const GreyPicture& picture, const DisplacementLayout& layout,
                                  const DisplacementRange& range, int level,

@@ -42,6 +42,12 @@ class KeyGroupGeometry {
   const std::vector<Triangle>& Triangles(int level);
   /// The layout of `packing` for this base (built once).
   const DisplacementLayout& Layout(DisplacementPacking packing);
+  /// Layout(packing), checked against the picture size a file's HEAD declares when this is its
+  /// first key group (HEAD gives key group 0's size; later ones have their layout's):
+  /// kCorrupt when they differ.
+  StatusOr<const DisplacementLayout*> CheckedLayout(DisplacementPacking packing,
+                                                    bool first_key_group, int header_width,
+                                                    int header_height);
   /// Positions of a frame at `level` (0..levels()), indexed as Triangles(level): the base posed
   /// by `transforms`, subdivided, and displaced along its normals by `picture`'s samples
   /// de-quantised with `range` in `layout`.

@@ -151,9 +151,7 @@ class MvidDecoder::StreamedGroups : public GroupSource {
 };
 
 std::string PartialFileText(const MvidInfo& info) {
-  if (!info.partial()) return "";
-  return "partial file: only " + std::to_string(info.frame_count) + " of the " +
-         std::to_string(info.declared_frame_count) + " frames its header promises are readable";
+  return PartialFileText(info.frame_count, info.declared_frame_count);
 }
 
 StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenFile(const std::string& path,
@@ -191,21 +189,11 @@ StatusOr<std::unique_ptr<MvidDecoder>> MvidDecoder::OpenIndexed(
     }
     info.key_groups.push_back(span);
   }
-  if (info.partial() && info.frame_count > 0 && !options.allow_partial) {
-    return CorruptError(decoder->name_ + ": " + PartialFileText(info) +
-                        " (the file is cut or damaged; open it with allow_partial, "
-                        "--allow-partial in meshvid, to read those)");
-  }
   decoder->groups_ = std::make_unique<IndexedGroups>(std::move(reader));
   MESHVID_RETURN_IF_ERROR(decoder->LoadKeyGroup(0));
-  if (info.frame_count == 0) {
-    const std::string promise =
-        info.declared_frame_count > 0
-            ? "the header promises " + std::to_string(info.declared_frame_count) + " frames; "
-            : "";
-    return CorruptError(decoder->name_ + ": no frame is readable (" + promise +
-                        "the file is cut or damaged in its first group of frames)");
-  }
+  MESHVID_RETURN_IF_ERROR(CheckReadableFrames(info.frame_count, info.declared_frame_count,
+                                              options.allow_partial, decoder->name_,
+                                              "allow_partial, --allow-partial in meshvid,"));
   return decoder;
 }
 
@@ -316,19 +304,6 @@ StatusOr<MvidKeyGroupInfo> MvidDecoder::DescribeKeyGroup(std::uint32_t k) {
   return description;
 }
 
-StatusOr<const DisplacementLayout*> MvidDecoder::LayoutFor(DisplacementPacking packing) {
-  const DisplacementLayout& layout = key_group_->geometry.Layout(packing);
-  // HEAD's picture size is key group 0's; later key groups have the size of their layout.
-  if (key_group_->index == 0 &&
-      (layout.width() != info_.picture_width || layout.height() != info_.picture_height)) {
-    return CorruptError("displacement picture is " + std::to_string(info_.picture_width) + "x" +
-                        std::to_string(info_.picture_height) + ", the packing of this base " +
-                        "mesh and level count needs " + std::to_string(layout.width()) + "x" +
-                        std::to_string(layout.height()));
-  }
-  return &layout;
-}
-
 Status MvidDecoder::CheckLevel(int level) const {
   if (level < 0 || level > info_.levels) {
     return InvalidArgumentError("level " + std::to_string(level) + " is not in 0.." +
@@ -388,7 +363,8 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
                                                  key_group_->geometry.quantization());
   if (!side.ok()) return side.status().WithContext(context);
   group->side = std::move(*side);
-  StatusOr<const DisplacementLayout*> layout = LayoutFor(group->side.packing);
+  StatusOr<const DisplacementLayout*> layout = key_group_->geometry.CheckedLayout(
+      group->side.packing, key_group_->index == 0, info_.picture_width, info_.picture_height);
   if (!layout.ok()) return layout.status().WithContext(context);
   group->layout = *layout;
   StatusOr<std::unique_ptr<VideoDecoder>> created =

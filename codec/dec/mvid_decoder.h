@@ -167,9 +167,6 @@ class MvidDecoder {
   static StatusOr<std::unique_ptr<MvidDecoder>> OpenIndexed(ContainerReader reader,
                                                             const MvidDecoderOptions& options);
   Status LoadGroupOf(std::uint32_t frame);
-  /// The current key group's layout of `packing` (built once); key group 0's must have the
-  /// stream's picture size.
-  StatusOr<const DisplacementLayout*> LayoutFor(DisplacementPacking packing);
   Status CheckLevel(int level) const;
 
   MvidDecoderOptions options_;

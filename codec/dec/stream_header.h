@@ -3,6 +3,7 @@
 #ifndef MESHVID_CODEC_DEC_STREAM_HEADER_H_
 #define MESHVID_CODEC_DEC_STREAM_HEADER_H_
 
+#include <cstdint>
 #include <string>
 
 #include "codec/common/video_codec.h"
@@ -15,6 +16,16 @@ namespace meshvid {
 /// 10-bit "displacement" stream meshvid writes, of a codec it decodes, and a level count the
 /// subdivision supports. kUnsupported / kCorrupt naming `name` otherwise.
 StatusOr<VideoCodec> CheckStreamHeader(const ContainerHeader& header, const std::string& name);
+
+/// "partial file: only 8 of the 12 frames its header promises are readable" when `readable` <
+/// `declared`, else "": the words every front end uses for a partial file.
+std::string PartialFileText(std::uint64_t readable, std::uint32_t declared);
+
+/// Ok when a file with `readable` of the `declared` frames can be decoded: at least one frame,
+/// and all of them unless `allow_partial`; kCorrupt naming `name` otherwise, telling how to
+/// read a partial file (`allow_hint`, e.g. "--allow-partial").
+Status CheckReadableFrames(std::uint64_t readable, std::uint32_t declared, bool allow_partial,
+                           const std::string& name, const std::string& allow_hint);
 
 }  // namespace meshvid
 

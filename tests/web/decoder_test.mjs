@@ -1,6 +1,7 @@
 // The WebAssembly decoder against the native one: every frame of each file at every level,
 // positions within 1e-5 of the object's size, the same triangles and key groups; frames asked
-// for out of order; bad, cut and out-of-range input refused with a MeshvidError.
+// for out of order; bad, cut and out-of-range input refused with a MeshvidError; the same
+// files streamed by range requests (a fetch over the bytes), no byte fetched twice.
 // Usage: node decoder_test.mjs WEB_BUILD_DIR FILE.mvid REFERENCE.bin [FILE.mvid REFERENCE.bin]...
 // (REFERENCE.bin from native_reference). The native decoder's displacement pictures stand in
 // for the browser's video decoder, which Node.js lacks.
@@ -20,6 +21,24 @@ const draco = await createRequire(path.join(webBuild, 'package.json'))('draco3d'
 
 async function rejects(promise, pattern, what) {
   await assert.rejects(promise, (e) => e instanceof MeshvidError && pattern.test(e.message), what);
+}
+
+/** A fetch serving `bytes` at any URL as an HTTP server does, answering range requests unless
+ * `ranges` is false; it adds each request's [start, end) to `log`. */
+function fetchOver(bytes, log = [], ranges = true) {
+  return async (url, { headers = {} } = {}) => {
+    const range = /^bytes=(\d+)-(\d+)$/.exec(headers.range ?? '');
+    if (!range || !ranges) {
+      log.push([0, bytes.length]);
+      return new Response(bytes, { status: 200 });
+    }
+    const start = Number(range[1]);
+    const end = Math.min(Number(range[2]) + 1, bytes.length);
+    if (start >= end) return new Response(null, { status: 416 });
+    log.push([start, end]);
+    return new Response(bytes.slice(start, end), { status: 206, headers: {
+      'content-range': `bytes ${start}-${end - 1}/${bytes.length}` } });
+  };
 }
 
 for (let p = 0; p < pairs.length; p += 2) {
@@ -60,6 +79,72 @@ for (let p = 0; p < pairs.length; p += 2) {
   const order = [...Array(file.frameCount).keys()].reverse();
   await Promise.all(order.map((t) => checkFrame(t, file.levels)));
   assert.ok(worst <= 1e-5, `${name}: positions differ by ${worst} of the size`);
+
+  // Streamed: every frame as from the bytes, each byte fetched at most once; from a server
+  // without range requests, the file comes whole.
+  for (const ranges of [true, false]) {
+    const log = [];
+    const streamed = await openMvid(`http://localhost/files/${name}`,
+                                    { draco, decodeGroup, fetch: fetchOver(bytes, log, ranges) });
+    for (let t = 0; t < streamed.frameCount; ++t) {
+      const decoded = await streamed.frame(t, streamed.levels);
+      worst = Math.max(worst, compareFrame(name, reference, t, streamed.levels, decoded, scale));
+    }
+    const fetched = log.reduce((sum, [start, end]) => sum + end - start, 0);
+    const covered = new Uint8Array(bytes.length);
+    for (const [start, end] of log) covered.fill(1, start, end);
+    assert.equal(fetched, covered.reduce((sum, b) => sum + b, 0), `${name}: a byte fetched twice`);
+    if (!ranges) assert.equal(log.length, 1, `${name}: ${log.length} requests`);
+    streamed.close();
+  }
+  assert.ok(worst <= 1e-5, `${name}: streamed positions differ by ${worst} of the size`);
+  // A server that hides Content-Range from the page (another site's, not exposing it): the
+  // file is fetched whole.
+  {
+    const hiding = async (url, init) => {
+      const answer = await fetchOver(bytes)(url, init);
+      return new Response(await answer.arrayBuffer(), { status: answer.status });
+    };
+    const whole = await openMvid(`http://localhost/files/${name}`,
+                                 { draco, decodeGroup, fetch: hiding });
+    assert.equal(whole.frameCount, reference.frameCount, `${name}: opened whole`);
+    assert.equal(whole.bytesFetched, 0, `${name}: opened as bytes, not streamed`);
+    whole.close();
+  }
+  // Streamed out of order (key groups set up from the middle), and cut: the cut file has no
+  // index, so it is read by a scan, as from bytes.
+  {
+    const streamed = await openMvid(`http://localhost/files/${name}`,
+                                    { draco, decodeGroup, fetch: fetchOver(bytes) });
+    for (const t of [...Array(streamed.frameCount).keys()].reverse()) {
+      const decoded = await streamed.frame(t, 0);
+      worst = Math.max(worst, compareFrame(name, reference, t, 0, decoded, scale));
+    }
+    streamed.close();
+    const cut = bytes.slice(0, Math.floor(bytes.length * 0.7));
+    const options = { draco, decodeGroup, allowPartial: true };
+    let fromBytes = null;
+    try {
+      fromBytes = await openMvid(cut, options);
+    } catch (e) {
+      await rejects(openMvid(`http://localhost/cut-${name}`, { ...options, fetch: fetchOver(cut) }),
+                    new RegExp(e.message.split(':')[0]), 'a cut stream');
+    }
+    if (fromBytes) {
+      const cutStream = await openMvid(`http://localhost/cut-${name}`,
+                                       { ...options, fetch: fetchOver(cut) });
+      assert.equal(cutStream.frameCount, fromBytes.frameCount, `${name}: a cut stream's frames`);
+      const last = cutStream.frameCount - 1;
+      const decoded = await cutStream.frame(last, 0);
+      worst = Math.max(worst, compareFrame(name, reference, last, 0, decoded, scale));
+      cutStream.close();
+      fromBytes.close();
+    }
+    assert.ok(worst <= 1e-5, `${name}: streamed positions differ by ${worst} of the size`);
+  }
+  await rejects(openMvid('http://localhost/missing.mvid', { draco, decodeGroup,
+    fetch: async () => new Response(null, { status: 404, statusText: 'Not Found' }) }),
+                /^not found: .*404/, 'a missing URL');
 
   await rejects(file.frame(file.frameCount, 0), /not in 0\.\./, 'a frame past the end');
   await rejects(file.frame(0, file.levels + 1), /level/, 'a level past the finest');

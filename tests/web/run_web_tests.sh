@@ -4,12 +4,13 @@
 # the WebAssembly decoder under Node.js on them all; browser_test.mjs runs it in headless
 # Chromium with WebCodecs on the AV1 ones, and on AV1 transcodes of the others (`meshvid
 # transcode`), which themselves must be refused with an error in the page; player_test.mjs
-# plays the last file in the player (web/player).
-# Usage: run_web_tests.sh NATIVE_REFERENCE MESHVID PROJECT_ROOT WORK_DIR FILE.mvid...
+# plays the last file in the player (web/player), and streams a 10 MB file made of it
+# (repeat_mvid) through a throttled server.
+# Usage: run_web_tests.sh NATIVE_REFERENCE REPEAT_MVID MESHVID PROJECT_ROOT WORK_DIR FILE.mvid...
 # Exits 77 (skipped) when the WebAssembly decoder is not built.
 set -eu
-native_reference=$1 meshvid=$2 root=$3 work=$4
-shift 4
+native_reference=$1 repeat_mvid=$2 meshvid=$3 root=$4 work=$5
+shift 5
 if [ ! -f "$root/web/build/meshvid_wasm.mjs" ] || ! command -v node >/dev/null 2>&1; then
   echo "skipped: the WebAssembly decoder is not built (scripts/setup builds it into web/build)"
   exit 77
@@ -41,5 +42,7 @@ if [ ! -x "$browser" ]; then
 fi
 node "$here/browser_test.mjs" "$root" "$work" --files "${browser_files#,}" \
   --unsupported "${unsupported#,}"
-# The player, on the last file (the fresh encode).
-node "$here/player_test.mjs" "$root" "$work" "$(basename "$file" .mvid).mvid"
+# The player, on the last file (the fresh encode), and on 80 copies of it one after another.
+last=$(basename "$file" .mvid)
+"$repeat_mvid" "$work/$last.mvid" 80 "$work/long.mvid"
+node "$here/player_test.mjs" "$root" "$work" "$meshvid" "$last.mvid" long.mvid

@@ -3,10 +3,13 @@
 // reconstruction run in WebAssembly (meshvid_wasm.mjs, built from web/wasm); the base meshes
 // are decoded by a Draco decoder module (draco3d's, or three.js's), zstd by fzstd (npm, copied
 // beside this file by the build), and the displacement video by WebCodecs (webcodecs.mjs) or
-// the `decodeGroup` given to openMvid. worker.mjs runs it off the page's thread.
+// the `decodeGroup` given to openMvid. A file at a URL is streamed: read by HTTP range
+// requests through its index, a group (and its key group's base) at a time, the next group
+// fetched and decoded while the current one is shown. worker.mjs runs it off the page's thread.
 import { decompress as zstdDecompress } from './fzstd.mjs';
 import { MeshvidError } from './errors.mjs';
 import createMeshvidWasm from './meshvid_wasm.mjs';
+import { RemoteFile } from './range_fetch.mjs';
 import { decodeGroupWithWebCodecs } from './webcodecs.mjs';
 
 export { MeshvidError };
@@ -16,6 +19,11 @@ function check(error) {
 }
 
 let wasmModule = null;
+
+/** Bytes a streamed file's opening reads from each end (the header, the index). */
+const OPEN_BYTES = 16384;
+/** The least a streamed file's read fetches when it finds bytes missing. */
+const MISS_BYTES = 16384;
 
 async function loadWasm() {
   if (!wasmModule) wasmModule = createMeshvidWasm({ zstdDecompress });
@@ -83,22 +91,37 @@ class GroupVideo {
 
 /** An opened .mvid (openMvid). */
 export class MvidFile {
-  constructor(module, wasm, { draco, decodeGroup }) {
+  constructor(module, wasm, { draco, decodeGroup, remote = null, name = 'file' }) {
     this.module_ = module;
+    this.name_ = name;  // the file's name in errors
     this.wasm_ = wasm;
+    this.remote_ = remote;  // the RemoteFile of a streamed file
+    this.fetches_ = Promise.resolve();  // a streamed file's range requests, one at a time
     this.draco_ = draco;
     this.decodeGroup_ = decodeGroup;
     this.triangles_ = new Map();  // level -> the current key group's triangles
-    this.frameCount = wasm.frameCount();
-    this.frameRate = wasm.frameRate();
-    this.levels = wasm.levels();
-    this.keyGroupCount = wasm.keyGroupCount();
-    this.codecTag = wasm.codecTag();
-    /** True when fewer frames are readable than the header promises (opened allowPartial). */
-    this.partial = wasm.declaredFrameCount() > this.frameCount;
+    this.readFileFigures_();
     this.loadedGroup_ = -1;
     this.queue_ = Promise.resolve();
     this.videos_ = new Map();  // group -> promise of its pictures
+    this.preparing_ = -1;      // the key group last made ready ahead
+  }
+
+  /** Reads the opened file's figures (a streamed file's once it has opened). */
+  readFileFigures_() {
+    if (!this.wasm_.isOpen()) return;
+    this.frameCount = this.wasm_.frameCount();
+    this.frameRate = this.wasm_.frameRate();
+    this.levels = this.wasm_.levels();
+    this.keyGroupCount = this.wasm_.keyGroupCount();
+    this.codecTag = this.wasm_.codecTag();
+    /** True when fewer frames are readable than the header promises (opened allowPartial). */
+    this.partial = this.wasm_.declaredFrameCount() > this.frameCount;
+  }
+
+  /** Bytes received so far of a streamed file (0 for one opened from bytes). */
+  get bytesFetched() {
+    return this.remote_?.bytesFetched ?? 0;
   }
 
   checkFrame_(t) {
@@ -118,30 +141,109 @@ export class MvidFile {
    * loaded). */
   decodeVideo_(g) {
     if (!this.videos_.has(g)) {
-      let video;
-      try {
-        video = new GroupVideo(this.wasm_, g, this.codecTag);
-      } catch (error) {
-        return Promise.reject(error);
-      }
-      this.videos_.set(g, Promise.resolve().then(() => this.decodeGroup_(video)));
+      this.videos_.set(g, this.fetchGroup_(g)
+        .then(() => this.withBytes_(() => new GroupVideo(this.wasm_, g, this.codecTag)))
+        .then((video) => this.decodeGroup_(video)));
     }
     return this.videos_.get(g);
   }
 
-  async loadGroupOf_(t) {
+  /** Fetches what of bytes [start, end) of a streamed file has not arrived. */
+  async fetchRange_(start, end) {
+    for (;;) {
+      // One request at a time, each for a gap found just before it, so no byte comes twice.
+      const fetched = this.fetches_.then(async () => {
+        const gap = this.wasm_.firstGap(start, end);
+        if (!gap) return false;
+        this.wasm_.addBytes(gap.start, await this.remote_.read(gap.start, gap.end));
+        return true;
+      });
+      this.fetches_ = fetched.catch(() => {});
+      if (!await fetched) return;
+    }
+  }
+
+  /** Fetches group g's bytes, and its key group's base and motion unless it is current. */
+  async fetchGroup_(g) {
+    if (!this.remote_) return;
+    const k = this.wasm_.keyGroupOfGof(g);
+    if (this.wasm_.currentKeyGroup() !== k && this.wasm_.preparedKeyGroup() !== k) {
+      const { start, end } = this.wasm_.keyGroupSpan(k);
+      await this.fetchRange_(start, end);
+    }
+    const { start, end } = this.wasm_.groupSpan(g);
+    await this.fetchRange_(start, end);
+  }
+
+  /** call()'s result, fetching and calling again while it finds bytes of a streamed file
+   * missing (then its error, if any, is only that). */
+  async withBytes_(call) {
+    // Each miss of one call fetches twice what the last did: a file without a usable index is
+    // read by a scan of its chunks, one miss after another.
+    for (let least = MISS_BYTES; ; least *= 2) {
+      let result;
+      let error = null;
+      try {
+        result = call();
+      } catch (thrown) {
+        error = thrown;
+      }
+      const missing = this.wasm_.takeMissing();
+      if (!missing) {
+        if (error) throw error;
+        return result;
+      }
+      const end = Math.min(this.remote_.size, Math.max(missing.end, missing.start + least));
+      await this.fetchRange_(missing.start, end);
+    }
+  }
+
+  /** Key group k's base mesh, decoded by Draco (its bytes fetched if need be). */
+  async baseMesh_(k) {
+    const base = await this.withBytes_(() => {
+      const bytes = this.wasm_.baseBytes(k).slice();
+      check(this.wasm_.error());
+      return bytes;
+    });
+    return decodeDracoMesh(this.draco_, base);
+  }
+
+  /** Makes key group k (which group g starts) ready ahead, with its triangles at `level`, so
+   * that its first frame costs what any frame costs; work done between frames. */
+  async prepareKeyGroup_(k, g, level) {
+    if (this.preparing_ === k || this.wasm_.preparedKeyGroup() === k) return;
+    this.preparing_ = k;
+    const between = () => new Promise((resolve) => setTimeout(resolve, 0));  // frames go first
+    try {
+      await this.fetchGroup_(g);
+      await between();
+      const mesh = await this.baseMesh_(k);
+      await between();
+      if (this.wasm_.currentKeyGroup() === k) return;
+      await this.withBytes_(() => check(this.wasm_.prepareKeyGroup(k, mesh.positions,
+                                                                   mesh.triangles, level)));
+    } catch {
+      // It is set up again when it is needed, which reports the error.
+    } finally {
+      this.preparing_ = -1;
+    }
+  }
+
+  async loadGroupOf_(t, level) {
     const g = this.wasm_.gofOfFrame(t);
     if (g === this.loadedGroup_) return;
     this.loadedGroup_ = -1;
     const k = this.wasm_.keyGroupOfGof(g);
+    await this.fetchGroup_(g);
     if (this.wasm_.currentKeyGroup() !== k) {
-      const base = this.wasm_.baseBytes(k).slice();
-      check(this.wasm_.error());
-      const mesh = decodeDracoMesh(this.draco_, base);
-      check(this.wasm_.setKeyGroup(k, mesh.positions, mesh.triangles));
+      if (!this.wasm_.usePreparedKeyGroup(k)) {
+        const mesh = await this.baseMesh_(k);
+        await this.withBytes_(() => check(this.wasm_.setKeyGroup(k, mesh.positions,
+                                                                 mesh.triangles)));
+      }
       this.triangles_.clear();
     }
-    check(this.wasm_.loadGof(g));
+    await this.withBytes_(() => check(this.wasm_.loadGof(g)));
     const pictures = await this.decodeVideo_(g).catch((error) => {
       this.videos_.delete(g);  // asked for again, it is decoded again
       throw error;
@@ -152,17 +254,19 @@ export class MvidFile {
     }
     if (g + 1 < this.wasm_.gofCount()) {
       this.decodeVideo_(g + 1).catch(() => {});  // a failure surfaces when it is needed
+      const next = this.wasm_.keyGroupOfGof(g + 1);
+      if (next !== k) this.prepareKeyGroup_(next, g + 1, level);
     }
     const frames = this.wasm_.gofFrameCount(g);
     if (!pictures || pictures.length !== frames) {
-      throw new MeshvidError(`corrupt: file: group ${g}: the video gives ` +
+      throw new MeshvidError(`corrupt: ${this.name_}: group ${g}: the video gives ` +
                              `${pictures ? pictures.length : 0} pictures for ${frames} frames`);
     }
     const samples = this.wasm_.pictureSamples();
     pictures.forEach((picture, i) => {
       if (picture.length !== samples) {
-        throw new MeshvidError(`corrupt: file: group ${g}: picture ${i} has ${picture.length} ` +
-                               `samples, the layout needs ${samples}`);
+        throw new MeshvidError(`corrupt: ${this.name_}: group ${g}: picture ${i} has ` +
+                               `${picture.length} samples, the layout needs ${samples}`);
       }
       const address = this.wasm_.pictureAddress(i);
       this.module_.HEAPU16.set(picture, address / 2);
@@ -187,7 +291,7 @@ export class MvidFile {
     if (!Number.isInteger(level) || level < 0 || level > this.levels) {
       throw new MeshvidError(`invalid argument: level ${level} is not in 0..${this.levels}`);
     }
-    await this.loadGroupOf_(t);
+    await this.loadGroupOf_(t, level);
     check(this.wasm_.decodePositions(t, level));
     let triangles = this.triangles_.get(level);
     if (!triangles) {
@@ -203,23 +307,64 @@ export class MvidFile {
   }
 }
 
+/** The name of the file at `url` in errors: its last path segment. */
+function nameOf(url) {
+  const path = url.split(/[?#]/)[0];
+  const last = path.slice(path.lastIndexOf('/') + 1);
+  try {
+    return decodeURIComponent(last) || url;
+  } catch {
+    return last;  // a malformed escape: the name as it is
+  }
+}
+
 /**
- * Opens a .mvid from its bytes (Uint8Array or ArrayBuffer).
+ * Opens a .mvid: its bytes (Uint8Array or ArrayBuffer), or a URL (string or URL), which is
+ * streamed: read with HTTP range requests through the file's index, so frames can be asked
+ * for once their group has arrived (a server that ignores range requests sends it whole).
  * options.draco: a Draco decoder module (draco3d's createDecoderModule(), or three.js's).
  * options.decodeGroup: async (GroupVideo) => array of Uint16Array pictures (width x height
  *   samples each, in presentation order); the browser's WebCodecs by default.
  * options.allowPartial: open a cut file, giving the frames that are readable.
+ * options.fetch: the fetch function for a URL (globalThis.fetch by default).
+ * options.name: the file's name in errors (by default its URL's last segment, or "file").
  */
-export async function openMvid(bytes, { draco, decodeGroup = decodeGroupWithWebCodecs,
-                                        allowPartial = false } = {}) {
+export async function openMvid(source, { draco, decodeGroup = decodeGroupWithWebCodecs,
+                                         allowPartial = false, fetch = globalThis.fetch,
+                                         name } = {}) {
   if (!draco) throw new MeshvidError('invalid argument: openMvid needs a Draco decoder module');
   const module = await loadWasm();
   const wasm = new module.WasmDecoder();
-  const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
-  const error = wasm.open(view, allowPartial);
-  if (error) {
+  try {
+    let remote = null;
+    if (typeof source === 'string' || source instanceof URL) {
+      const url = `${source}`;
+      name ??= nameOf(url);
+      remote = new RemoteFile(url, fetch);
+      const head = await remote.start(OPEN_BYTES);
+      if (head.whole) {
+        source = head.bytes;
+        remote = null;
+      } else {
+        wasm.beginStream(remote.size, name);
+        wasm.addBytes(0, head.bytes);
+      }
+    }
+    name ??= 'file';
+    const file = () => new MvidFile(module, wasm, { draco, decodeGroup, remote, name });
+    if (!remote) {
+      check(wasm.open(source instanceof ArrayBuffer ? new Uint8Array(source) : source,
+                      name, allowPartial));
+      return file();
+    }
+    // The index is at the end: fetch the end, then whatever else opening finds missing.
+    const opened = file();
+    await opened.fetchRange_(Math.max(0, remote.size - OPEN_BYTES), remote.size);
+    await opened.withBytes_(() => check(wasm.openStream(allowPartial)));
+    opened.readFileFigures_();
+    return opened;
+  } catch (error) {
     wasm.delete();
-    throw new MeshvidError(error);
+    throw error;
   }
-  return new MvidFile(module, wasm, { draco, decodeGroup });
 }

@@ -1,7 +1,7 @@
 // meshvid's decoder in a dedicated worker, so that a page draws one frame while the next is
 // decoded on another core. The page side is openMvidInWorker (worker_client.mjs); the
-// messages: {id, type: 'open', bytes, dracoUrl, allowPartial} answered with the file's
-// figures, {id, type: 'frame', t, level} answered with positions (transferred), the triangles
+// messages: {id, type: 'open', bytes or url, dracoUrl, allowPartial} answered with the
+// file's figures (a URL is streamed), {id, type: 'frame', t, level} answered with positions (transferred), the triangles
 // when they differ from the last frame's (a new key group or level), and the key group; an
 // error is answered with {id, error}.
 import { loadDracoDecoder } from './draco_loader.mjs';
@@ -19,7 +19,7 @@ self.onmessage = async ({ data }) => {
       file?.close();
       file = null;
       lastTriangles = null;
-      file = await openMvid(data.bytes, { draco, allowPartial: data.allowPartial });
+      file = await openMvid(data.url ?? data.bytes, { draco, allowPartial: data.allowPartial });
       const { frameCount, frameRate, levels, keyGroupCount, codecTag, partial } = file;
       self.postMessage({ id, info: { frameCount, frameRate, levels, keyGroupCount, codecTag,
                                      partial } });
@@ -29,7 +29,8 @@ self.onmessage = async ({ data }) => {
       const positions = frame.positions.slice();
       const triangles = frame.triangles !== lastTriangles ? frame.triangles.slice() : null;
       lastTriangles = frame.triangles;
-      self.postMessage({ id, positions, triangles, keyGroup: frame.keyGroup },
+      self.postMessage({ id, positions, triangles, keyGroup: frame.keyGroup,
+                         bytesFetched: file.bytesFetched },
                        triangles ? [positions.buffer, triangles.buffer] : [positions.buffer]);
     } else if (data.type === 'close') {
       file?.close();

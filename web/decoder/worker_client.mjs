@@ -9,6 +9,7 @@ class WorkerMvidFile {
     this.worker_ = worker;
     this.call_ = call;
     this.triangles_ = null;  // the last triangles the worker sent
+    this.bytesFetched = 0;   // bytes of a streamed file received so far (as of the last frame)
   }
 
   /** Frame t at `level`: positions (Float32Array, the caller's), triangles (one array per key
@@ -16,6 +17,7 @@ class WorkerMvidFile {
   async frame(t, level = this.levels) {
     const reply = await this.call_({ type: 'frame', t, level });
     if (reply.triangles) this.triangles_ = reply.triangles;
+    this.bytesFetched = reply.bytesFetched;
     return { positions: reply.positions, triangles: this.triangles_, keyGroup: reply.keyGroup };
   }
 
@@ -26,10 +28,11 @@ class WorkerMvidFile {
 }
 
 /**
- * Opens a .mvid (Uint8Array or ArrayBuffer; transferred to the worker) in a new worker.
+ * Opens a .mvid in a new worker: its bytes (Uint8Array or ArrayBuffer; transferred to the
+ * worker), or a URL (string or URL, relative to the page), which the worker streams.
  * options.dracoUrl: the URL of a Draco decoder's classic script (three.js's draco_decoder.js).
  */
-export async function openMvidInWorker(bytes, { dracoUrl, allowPartial = false } = {}) {
+export async function openMvidInWorker(source, { dracoUrl, allowPartial = false } = {}) {
   const worker = new Worker(new URL('./worker.mjs', import.meta.url), { type: 'module' });
   const pending = new Map();
   let next = 0;
@@ -49,10 +52,13 @@ export async function openMvidInWorker(bytes, { dracoUrl, allowPartial = false }
     pending.set(id, { resolve, reject });
     worker.postMessage({ ...message, id }, transfer);
   });
-  const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
+  const streamed = typeof source === 'string' || source instanceof URL;
+  const view = source instanceof ArrayBuffer ? new Uint8Array(source) : source;
   try {
-    const { info } = await call({ type: 'open', bytes: view, dracoUrl, allowPartial },
-                                [view.buffer]);
+    const { info } = await call(
+      streamed ? { type: 'open', url: new URL(source, location.href).href, dracoUrl, allowPartial }
+               : { type: 'open', bytes: view, dracoUrl, allowPartial },
+      streamed ? [] : [view.buffer]);
     return new WorkerMvidFile(worker, call, info);
   } catch (error) {
     worker.terminate();

@@ -1,5 +1,6 @@
-// meshvid's browser player: opens a .mvid (?src=URL, or dropped on the page), plays it at the
-// capture's frame rate with three.js, pauses, scrubs, steps, picks the level and orbits.
+// meshvid's browser player: opens a .mvid (?src=URL, streamed by range requests so that it
+// plays once its first group has arrived, or dropped on the page), plays it at the capture's
+// frame rate with three.js, pauses, scrubs, steps, picks the level and orbits.
 // The file is decoded in a worker (web/decoder/worker.mjs): while a frame is drawn, the next is
 // decoded on another core. Within a key group the vertex buffer is updated in place; the index
 // buffer is replaced only where a key group starts (one triangle array per key group and level).
@@ -22,6 +23,8 @@ const state = {
   decodeMs: 0,         // total time in the decoder
   renders: 0,          // pictures drawn (one per display refresh)
   dropped: 0,          // frames skipped while playing, to keep up with the clock
+  bytesFetched: 0,     // bytes of a streamed file received (as of the frame shown)
+  firstFrameBytes: 0,  // bytes of a streamed file received when the first frame was shown
 };
 
 // --- the scene
@@ -84,6 +87,31 @@ function frameCamera() {
   controls.update();
 }
 
+/**
+ * Aims the camera as `meshvid render --camera AZ,EL,ZOOM` does: from azimuth `azimuth` about +y
+ * and elevation `elevation` (degrees), 40 degrees of view vertically, at the distance where the
+ * frame's bounding sphere fits the picture (divided by `zoom`).
+ */
+function aimCamera(azimuth, elevation, zoom = 1) {
+  geometry.computeBoundingBox();
+  const box = geometry.boundingBox;
+  const center = box.getCenter(new THREE.Vector3());
+  const radius = Math.max(0.5 * box.getSize(new THREE.Vector3()).length(), 1e-6);
+  const degrees = THREE.MathUtils.degToRad;
+  const towardsEye = new THREE.Vector3(
+    Math.cos(degrees(elevation)) * Math.sin(degrees(azimuth)), Math.sin(degrees(elevation)),
+    Math.cos(degrees(elevation)) * Math.cos(degrees(azimuth)));
+  camera.fov = 40;
+  const tanHalf = Math.tan(degrees(camera.fov / 2)) * Math.min(1, camera.aspect);
+  const distance = 1.02 * radius / Math.sin(Math.atan(tanHalf)) / zoom;
+  camera.position.copy(center).addScaledVector(towardsEye, distance);
+  camera.near = distance / 100;
+  camera.far = distance * 10;
+  camera.updateProjectionMatrix();
+  controls.target.copy(center);
+  controls.update();
+}
+
 /** Decodes frame t at the current level and puts it on screen. */
 async function show(t) {
   const began = performance.now();
@@ -113,6 +141,8 @@ async function show(t) {
   if (!state.ready) frameCamera();
   state.frame = t;
   state.keyGroup = decoded.keyGroup;
+  state.bytesFetched = file.bytesFetched;
+  if (!state.ready) state.firstFrameBytes = file.bytesFetched;
   state.ready = true;
   ++state.framesShown;
   $('seek').value = t;
@@ -134,7 +164,7 @@ function setPlaying(playing) {
   clock = { start: performance.now(), frame: state.frame };
 }
 
-async function open(bytes, name) {
+async function open(source, name) {
   try {
     showMessage(`Opening ${name}…`);
     file?.close();
@@ -142,8 +172,9 @@ async function open(bytes, name) {
     triangles = null;
     prefetch = null;
     Object.assign(state, { ready: false, error: null, frame: 0, keyGroup: -1, framesShown: 0,
-                           indexUploads: 0, decodeMs: 0, dropped: 0 });
-    file = await openMvidInWorker(bytes, { dracoUrl: DRACO_URL });
+                           indexUploads: 0, decodeMs: 0, dropped: 0, bytesFetched: 0,
+                           firstFrameBytes: 0 });
+    file = await openMvidInWorker(source, { dracoUrl: DRACO_URL });
     state.level = Math.min(1, file.levels);
     $('level').replaceChildren(...Array.from({ length: file.levels + 1 }, (_, level) => {
       const option = new Option(`${level}`, `${level}`);
@@ -160,15 +191,9 @@ async function open(bytes, name) {
   }
 }
 
-async function openUrl(url) {
-  try {
-    showMessage(`Loading ${url}…`);
-    const response = await fetch(url);
-    if (!response.ok) throw new Error(`${url}: HTTP ${response.status} ${response.statusText}`);
-    await open(new Uint8Array(await response.arrayBuffer()), url.split('/').pop());
-  } catch (error) {
-    fail(error);
-  }
+/** Opens the file at `url`, streamed: it plays once its first group has arrived. */
+function openUrl(url) {
+  return open(url, url.split('/').pop());
 }
 
 // --- controls
@@ -246,6 +271,8 @@ window.meshvidPlayer = {
   },
   play: () => setPlaying(true),
   pause: () => setPlaying(false),
+  /** Aims the camera as `meshvid render --camera AZ,EL,ZOOM` would at the frame shown. */
+  aim: (azimuth, elevation, zoom = 1) => aimCamera(azimuth, elevation, zoom),
   /** The positions on screen (a copy). */
   positions: () => Array.from(geometry.getAttribute('position')?.array ?? []),
   frameCount: () => file?.frameCount ?? 0,

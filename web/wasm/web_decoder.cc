@@ -7,7 +7,9 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "codec/dec/key_group_geometry.h"
 #include "codec/dec/stream_header.h"
 #include "format/container_reader.h"
+#include "web/wasm/fetched_ranges.h"
 
 namespace meshvid {
 namespace {
@@ -31,28 +34,66 @@ struct WebGroup {
   std::vector<GreyPicture> pictures;
 };
 
-/// A .mvid opened from bytes in the module's memory.
+/// A .mvid opened from bytes in the module's memory, or streamed: read through range requests
+/// as the page fetches them.
 class WasmDecoder {
  public:
   /// Opens `bytes` (a Uint8Array, copied); a file cut short of its header's frame count is
-  /// refused unless `allow_partial`.
-  std::string Open(std::string bytes, bool allow_partial) {
-    StatusOr<ContainerReader> reader =
-        ContainerReader::OpenMemory(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), "file");
-    if (!reader.ok()) return reader.status().ToString();
-    StatusOr<VideoCodec> codec = CheckStreamHeader(reader->header(), "file");
-    if (!codec.ok()) return codec.status().ToString();
-    reader_.emplace(std::move(*reader));
-    const std::uint64_t frames = reader_->frame_count();
-    const std::uint32_t declared = reader_->header().frame_count;
-    if (frames == 0) return "corrupt: file: no frame is readable (the file is cut or damaged)";
-    if (declared > frames && !allow_partial) {
-      return "corrupt: file: partial file: only " + std::to_string(frames) + " of the " +
-             std::to_string(declared) + " frames its header promises are readable";
-    }
-    return "";
+  /// refused unless `allow_partial`. `name` names the file in errors.
+  std::string Open(std::string bytes, std::string name, bool allow_partial) {
+    reader_.reset();
+    ranges_.reset();
+    return Adopt(
+        ContainerReader::OpenMemory(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), name),
+        allow_partial);
   }
 
+  /// Starts a file of `size` bytes streamed by range requests: the page adds what arrives
+  /// (AddBytes) and fetches what a call found missing (TakeMissing), then calls again.
+  void BeginStream(double size, std::string name) {
+    reader_.reset();
+    ranges_ = std::make_unique<FetchedRanges>(static_cast<std::uint64_t>(size), std::move(name));
+  }
+  /// Holds `bytes` (a Uint8Array) as the streamed file's bytes from `offset`.
+  void AddBytes(double offset, val bytes) {
+    ranges_->Add(static_cast<std::uint64_t>(offset),
+                 emscripten::convertJSArrayToNumberVector<std::uint8_t>(bytes));
+  }
+  /// The first range {start, end} of [start, end) of the streamed file that has not arrived,
+  /// or null.
+  val FirstGap(double start, double end) const {
+    if (!ranges_ || end <= start) return val::null();
+    return Range(ranges_->FirstGap(static_cast<std::uint64_t>(start),
+                                   static_cast<std::uint64_t>(end - start)));
+  }
+  /// The first range {start, end} a call since the last TakeMissing needed and did not have
+  /// (its error is then only that), or null.
+  val TakeMissing() { return ranges_ ? Range(ranges_->TakeMissing()) : val::null(); }
+  /// Opens the streamed file from the bytes that have arrived (its start and its end, where
+  /// the index is); as Open otherwise.
+  std::string OpenStream(bool allow_partial) {
+    return Adopt(ContainerReader::Open(std::make_unique<BorrowedRanges>(*ranges_)), allow_partial);
+  }
+
+  /// The bytes {start, end} of group `g`'s chunk.
+  val GroupSpan(int g) {
+    const std::uint64_t start = reader_->gofs()[g].offset;
+    return Span(start, ChunkEnd(start));
+  }
+  /// The bytes {start, end} of key group `k`'s BASE and MOTN chunks ({0, 0} if it has none).
+  val KeyGroupSpan(int k) {
+    const KeyGroupEntry& key_group = reader_->key_groups()[k];
+    std::uint64_t start = UINT64_MAX, last = 0;
+    for (std::uint64_t offset : {key_group.base_offset, key_group.motion_offset}) {
+      if (offset == 0) continue;
+      start = std::min(start, offset);
+      last = std::max(last, offset);
+    }
+    return start == UINT64_MAX ? Span(0, 0) : Span(start, ChunkEnd(last));
+  }
+
+  /// True once a file is open.
+  bool IsOpen() const { return reader_.has_value(); }
   int FrameCount() const { return static_cast<int>(reader_->frame_count()); }
   int DeclaredFrameCount() const { return static_cast<int>(reader_->header().frame_count); }
   double FrameRate() const {
@@ -90,34 +131,29 @@ class WasmDecoder {
   /// Makes key group `k` current from its base mesh as Draco decoded it (positions: Float32Array
   /// of x y z, triangles: Uint32Array of corner indices) and its MOTN payload.
   std::string SetKeyGroup(int k, val positions, val triangles) {
-    const std::string context = "file: key group " + std::to_string(k);
-    const std::vector<float> xyz = emscripten::convertJSArrayToNumberVector<float>(positions);
-    const std::vector<std::uint32_t> corners =
-        emscripten::convertJSArrayToNumberVector<std::uint32_t>(triangles);
-    if (xyz.size() % 3 != 0 || corners.size() % 3 != 0) {
-      return "corrupt: " + context + " BASE: not whole vertices and triangles";
-    }
-    TriangleMesh base;
-    base.positions.resize(xyz.size() / 3);
-    for (std::size_t v = 0; v < base.positions.size(); ++v) {
-      base.positions[v] = Eigen::Vector3f(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    }
-    base.triangles.resize(corners.size() / 3);
-    for (std::size_t t = 0; t < base.triangles.size(); ++t) {
-      base.triangles[t] = Triangle(corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]);
-    }
-    if (Status valid = ValidateMesh(base, "base mesh"); !valid.ok()) {
-      return valid.WithContext(context + " BASE").ToString();
-    }
-    StatusOr<std::vector<std::uint8_t>> motion = reader_->ReadMotion(k);
-    if (!motion.ok()) return motion.status().WithContext(context).ToString();
-    StatusOr<KeyGroupGeometry> geometry =
-        KeyGroupGeometry::Create(std::move(base), *motion, Levels());
-    if (!geometry.ok()) return geometry.status().WithContext(context + " MOTN").ToString();
-    group_.reset();
-    geometry_.emplace(std::move(*geometry));
-    key_group_ = k;
+    StatusOr<KeyGroupGeometry> geometry = BuildGeometry(k, positions, triangles);
+    if (!geometry.ok()) return geometry.status().ToString();
+    MakeCurrent(k, std::move(*geometry));
     return "";
+  }
+  /// Builds key group `k`'s geometry as SetKeyGroup does, with its triangles at `level`, without
+  /// making it current: the next key group, made while the current one plays.
+  std::string PrepareKeyGroup(int k, val positions, val triangles, int level) {
+    StatusOr<KeyGroupGeometry> geometry = BuildGeometry(k, positions, triangles);
+    if (!geometry.ok()) return geometry.status().ToString();
+    if (level >= 0 && level <= Levels()) geometry->Triangles(level);
+    prepared_.emplace(std::move(*geometry));
+    prepared_key_group_ = k;
+    return "";
+  }
+  /// The key group PrepareKeyGroup made ready, or -1.
+  int PreparedKeyGroup() const { return prepared_ ? prepared_key_group_ : -1; }
+  /// Makes key group `k` current from PrepareKeyGroup's work; false when it was not prepared.
+  bool UsePreparedKeyGroup(int k) {
+    if (!prepared_ || prepared_key_group_ != k) return false;
+    MakeCurrent(k, std::move(*prepared_));
+    prepared_.reset();
+    return true;
   }
   int CurrentKeyGroup() const { return geometry_ ? key_group_ : -1; }
 
@@ -151,21 +187,23 @@ class WasmDecoder {
       return fail(InvalidArgumentError("no group " + std::to_string(g)));
     StatusOr<GroupOfFrames> gof = reader_->ReadGof(g);
     if (!gof.ok()) return fail(gof.status());
-    StatusOr<std::vector<std::uint8_t>> config = ReadVideoConfig(gof->transforms);
-    if (!config.ok()) return fail(config.status().WithContext("file: group " + std::to_string(g)));
+    StatusOr<GofVideoHead> head = ReadGofVideoHead(gof->transforms);
+    if (!head.ok()) return fail(head.status().WithContext(Name() + ": group " + std::to_string(g)));
     int width = 0, height = 0;
     if (geometry_ && KeyGroupOfGof(g) == key_group_) {
-      StatusOr<WebGroup> group = GroupOf(*gof);
-      if (!group.ok()) return fail(group.status());
-      width = group->layout->width();
-      height = group->layout->height();
+      StatusOr<const DisplacementLayout*> layout = LayoutOf(head->packing);
+      if (!layout.ok()) {
+        return fail(layout.status().WithContext(Name() + ": group " + std::to_string(g)));
+      }
+      width = (*layout)->width();
+      height = (*layout)->height();
     }
     val packets = val::array();
     for (const std::vector<std::uint8_t>& packet : gof->packets[0]) {
       packets.call<void>("push", Copy(packet));
     }
     video.set("packets", packets);
-    video.set("config", Copy(*config));
+    video.set("config", Copy(head->video_config));
     video.set("width", width);
     video.set("height", height);
     return video;
@@ -213,11 +251,93 @@ class WasmDecoder {
   std::string Error() const { return error_; }
 
  private:
+  /// Makes `reader` the file's, refusing one with no readable frame, or (unless
+  /// `allow_partial`) fewer than its header promises.
+  std::string Adopt(StatusOr<ContainerReader> reader, bool allow_partial) {
+    reader_.reset();
+    geometry_.reset();
+    prepared_.reset();
+    group_.reset();
+    key_group_ = -1;
+    if (!reader.ok()) return reader.status().ToString();
+    const std::string& name = reader->source().name();
+    StatusOr<VideoCodec> codec = CheckStreamHeader(reader->header(), name);
+    if (!codec.ok()) return codec.status().ToString();
+    const Status readable = CheckReadableFrames(reader->frame_count(), reader->header().frame_count,
+                                                allow_partial, name, "allowPartial");
+    if (!readable.ok()) return readable.ToString();
+    reader_.emplace(std::move(*reader));
+    return "";
+  }
+
+  /// Key group `k`'s geometry from its decoded base mesh (see SetKeyGroup) and MOTN payload.
+  StatusOr<KeyGroupGeometry> BuildGeometry(int k, val positions, val triangles) {
+    const std::string context = Name() + ": key group " + std::to_string(k);
+    const std::vector<float> xyz = emscripten::convertJSArrayToNumberVector<float>(positions);
+    const std::vector<std::uint32_t> corners =
+        emscripten::convertJSArrayToNumberVector<std::uint32_t>(triangles);
+    if (xyz.size() % 3 != 0 || corners.size() % 3 != 0) {
+      return CorruptError(context + " BASE: not whole vertices and triangles");
+    }
+    TriangleMesh base;
+    base.positions.resize(xyz.size() / 3);
+    for (std::size_t v = 0; v < base.positions.size(); ++v) {
+      base.positions[v] = Eigen::Vector3f(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+    }
+    base.triangles.resize(corners.size() / 3);
+    for (std::size_t t = 0; t < base.triangles.size(); ++t) {
+      base.triangles[t] = Triangle(corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]);
+    }
+    MESHVID_RETURN_IF_ERROR(ValidateMesh(base, "base mesh").WithContext(context + " BASE"));
+    StatusOr<std::vector<std::uint8_t>> motion = reader_->ReadMotion(k);
+    if (!motion.ok()) return motion.status().WithContext(context);
+    StatusOr<KeyGroupGeometry> geometry =
+        KeyGroupGeometry::Create(std::move(base), *motion, Levels());
+    if (!geometry.ok()) return geometry.status().WithContext(context + " MOTN");
+    return geometry;
+  }
+
+  void MakeCurrent(int k, KeyGroupGeometry geometry) {
+    group_.reset();
+    geometry_.emplace(std::move(geometry));
+    key_group_ = k;
+  }
+
+  /// Where the chunk at `offset` ends: where the next chunk the index knows of starts, or
+  /// the file does (the index and trailer follow the last group).
+  std::uint64_t ChunkEnd(std::uint64_t offset) {
+    std::uint64_t end = reader_->source().size();
+    const auto consider = [&](std::uint64_t next) {
+      if (next > offset) end = std::min(end, next);
+    };
+    for (const IndexEntry& gof : reader_->gofs()) consider(gof.offset);
+    for (const KeyGroupEntry& key_group : reader_->key_groups()) {
+      consider(key_group.base_offset);
+      consider(key_group.motion_offset);
+    }
+    return end;
+  }
+
+  static val Span(std::uint64_t start, std::uint64_t end) {
+    val span = val::object();
+    span.set("start", double(start));
+    span.set("end", double(end));
+    return span;
+  }
+
+  /// The file's name in errors.
+  const std::string& Name() { return reader_->source().name(); }
+
+  /// {start, end} of `range`, or null.
+  static val Range(const std::optional<std::pair<std::uint64_t, std::uint64_t>>& range) {
+    return range ? Span(range->first, range->second) : val::null();
+  }
+
   /// Group `g` (kInvalidArgument when there is none or its key group is not current).
   StatusOr<GroupOfFrames> ReadGof(int g) {
     if (g < 0 || g >= GofCount()) return InvalidArgumentError("no group " + std::to_string(g));
     if (!geometry_ || KeyGroupOfGof(g) != key_group_) {
-      return InvalidArgumentError("file: group " + std::to_string(g) +
+      return InvalidArgumentError(Name() + ": group " + std::to_string(g) +
                                   ": its key group is not loaded");
     }
     return reader_->ReadGof(g);
@@ -225,7 +345,7 @@ class WasmDecoder {
 
   /// `gof` with its side information decoded and one empty picture per frame.
   StatusOr<WebGroup> GroupOf(const GroupOfFrames& gof) {
-    const std::string context = "file: group " + std::to_string(gof.gof_index);
+    const std::string context = Name() + ": group " + std::to_string(gof.gof_index);
     WebGroup group;
     group.first_frame = gof.first_frame;
     StatusOr<GofSideInfo> side =
@@ -233,13 +353,18 @@ class WasmDecoder {
                           geometry_->quantization());
     if (!side.ok()) return side.status().WithContext(context);
     group.side = std::move(*side);
-    group.layout = &geometry_->Layout(group.side.packing);
-    if (key_group_ == 0 && (group.layout->width() != int(reader_->header().streams[0].width) ||
-                            group.layout->height() != int(reader_->header().streams[0].height))) {
-      return CorruptError(context + ": the displacement pictures' size is not the header's");
-    }
+    StatusOr<const DisplacementLayout*> layout = LayoutOf(group.side.packing);
+    if (!layout.ok()) return layout.status().WithContext(context);
+    group.layout = *layout;
     group.pictures.resize(gof.frame_count);
     return group;
+  }
+
+  /// The current key group's layout of `packing`, checked against HEAD's picture size.
+  StatusOr<const DisplacementLayout*> LayoutOf(DisplacementPacking packing) {
+    const StreamInfo& stream = reader_->header().streams[0];
+    return geometry_->CheckedLayout(packing, key_group_ == 0, int(stream.width),
+                                    int(stream.height));
   }
 
   /// A copy of `bytes` as a Uint8Array of the page's own.
@@ -247,9 +372,12 @@ class WasmDecoder {
     return val(emscripten::typed_memory_view(bytes.size(), bytes.data())).call<val>("slice");
   }
 
+  std::unique_ptr<FetchedRanges> ranges_;  // a streamed file's bytes (null: in memory)
   std::optional<ContainerReader> reader_;
   std::optional<KeyGroupGeometry> geometry_;
   int key_group_ = -1;
+  std::optional<KeyGroupGeometry> prepared_;  // the next key group, made ahead
+  int prepared_key_group_ = -1;
   std::optional<WebGroup> group_;
   std::vector<std::uint8_t> bytes_;
   std::vector<Eigen::Vector3f> positions_;
@@ -262,6 +390,15 @@ EMSCRIPTEN_BINDINGS(meshvid) {
   emscripten::class_<WasmDecoder>("WasmDecoder")
       .constructor<>()
       .function("open", &WasmDecoder::Open)
+      .function("isOpen", &WasmDecoder::IsOpen)
+      .function("beginStream", &WasmDecoder::BeginStream)
+      .function("addBytes", &WasmDecoder::AddBytes)
+      .function("firstGap", &WasmDecoder::FirstGap)
+      .function("takeMissing", &WasmDecoder::TakeMissing)
+      .function("openStream", &WasmDecoder::OpenStream)
+      .function("groupSpan", &WasmDecoder::GroupSpan)
+      .function("keyGroupSpan", &WasmDecoder::KeyGroupSpan)
+      .function("preparedKeyGroup", &WasmDecoder::PreparedKeyGroup)
       .function("frameCount", &WasmDecoder::FrameCount)
       .function("declaredFrameCount", &WasmDecoder::DeclaredFrameCount)
       .function("frameRate", &WasmDecoder::FrameRate)
@@ -276,6 +413,8 @@ EMSCRIPTEN_BINDINGS(meshvid) {
       .function("gofFrameCount", &WasmDecoder::GofFrameCount)
       .function("baseBytes", &WasmDecoder::BaseBytes)
       .function("setKeyGroup", &WasmDecoder::SetKeyGroup)
+      .function("prepareKeyGroup", &WasmDecoder::PrepareKeyGroup)
+      .function("usePreparedKeyGroup", &WasmDecoder::UsePreparedKeyGroup)
       .function("currentKeyGroup", &WasmDecoder::CurrentKeyGroup)
       .function("loadGof", &WasmDecoder::LoadGof)
       .function("groupVideo", &WasmDecoder::GroupVideo)

@@ -199,6 +199,81 @@ TEST(MotionTest, TransformsRoundTripWithinTheStatedSteps) {
   EXPECT_LT(encoded->bytes.size(), 40u * 2 * 24 / 3);
 }
 
+TEST(MotionTest, TransformsQuantisedAboutAPivotKeepTheBoundNearIt) {
+  // A segment far from the origin, reaching 0.1 from its pivot: the rotation step its reach
+  // allows is 25 times the one a point 10 away needs (a quarter of the bound each).
+  MotionQuantization fine;
+  fine.translation_step = 1e-4f;
+  fine.rotation_step = 1e-4f / 10;
+  const float reach = 0.1f;
+  MotionQuantization coarse = fine;
+  coarse.rotation_step = RotationStepForReach(fine, reach);
+  EXPECT_FLOAT_EQ(coarse.rotation_step, 2.5e-4f);
+  const Eigen::Vector3f pivot(6.0f, -5.0f, 4.0f);
+  // A tracked segment: its pose jitters from frame to frame by a few millimetres and degrees.
+  std::mt19937 random(7);
+  std::normal_distribution<float> jitter(0.0f, 0.02f);
+  std::vector<std::vector<RigidTransform>> frames;
+  for (int f = 0; f < 20; ++f) {
+    const Eigen::Vector3f axis(1 + jitter(random), 2 + jitter(random), 3 + jitter(random));
+    const Eigen::Vector3f t(0.02f * f + 0.1f * jitter(random), 0.1f, -0.3f);
+    frames.push_back({MakeTransform(0.013f * f + jitter(random), axis, t)});
+  }
+  const std::vector<Eigen::Vector3f> pivots = {pivot};
+  auto about_pivot = EncodeTransforms(frames, coarse, pivots);
+  ASSERT_TRUE(about_pivot.ok());
+  auto decoded = DecodeTransforms(about_pivot->bytes, 20, 1, coarse);
+  ASSERT_TRUE(decoded.ok()) << decoded.status().ToString();
+  // Within the segment's reach a point moves by at most sqrt(3) / 2 steps of translation for
+  // each rounding, as a point within 10 of the origin does at the fine steps.
+  const float bound = std::sqrt(3.0f) * fine.translation_step;
+  const Eigen::Vector3f offsets[] = {{0, 0, 0}, {0.1f, 0, 0}, {0, -0.06f, 0.08f}};
+  float about_origin_error = 0;
+  auto about_origin = EncodeTransforms(frames, coarse);
+  ASSERT_TRUE(about_origin.ok());
+  for (int f = 0; f < 20; ++f) {
+    for (const Eigen::Vector3f& offset : offsets) {
+      const Eigen::Vector3f p = pivot + offset;
+      EXPECT_LE(((*decoded)[f][0].Apply(p) - frames[f][0].Apply(p)).norm(), bound);
+      about_origin_error =
+          std::max(about_origin_error,
+                   (about_origin->decoded[f][0].Apply(p) - frames[f][0].Apply(p)).norm());
+    }
+  }
+  // Rounded about the origin, the same coarse rotation step moves these points 5 times as far.
+  EXPECT_GT(about_origin_error, 5 * bound);
+  // The coarse rotation step costs fewer bytes than the fine one the origin needs.
+  auto at_fine_steps = EncodeTransforms(frames, fine);
+  ASSERT_TRUE(at_fine_steps.ok());
+  EXPECT_LT(about_pivot->bytes.size(), at_fine_steps->bytes.size());
+  EXPECT_FALSE(EncodeTransforms(frames, coarse, std::vector<Eigen::Vector3f>(2)).ok());
+}
+
+TEST(MotionTest, PivotsAreTheCentresOfTheVerticesEachSegmentMoves) {
+  MotionModel model;
+  model.segment_count = 3;  // segment 2 moves no vertex
+  model.blends.resize(4);
+  model.blends[0] = {{{{0, 1.0f}}}, 1};
+  model.blends[1] = {{{{0, 0.5f}, {1, 0.5f}}}, 2};
+  model.blends[2] = {{{{1, 1.0f}}}, 1};
+  model.blends[3] = {{{{1, 1.0f}}}, 1};
+  const std::vector<Eigen::Vector3f> positions = {{0, 0, 0}, {2, 0, 0}, {2, 4, 0}, {2, 0, 3}};
+  const MotionPivots pivots = FindMotionPivots(model, positions);
+  ASSERT_EQ(pivots.pivots.size(), 3u);
+  EXPECT_TRUE(pivots.pivots[0].isApprox(Eigen::Vector3f(1, 0, 0)));
+  EXPECT_TRUE(pivots.pivots[1].isApprox(Eigen::Vector3f(2, 2, 1.5f)));
+  EXPECT_EQ(pivots.pivots[2], Eigen::Vector3f::Zero());
+  EXPECT_FLOAT_EQ(pivots.reach, 2.5f);  // half the diagonal of segment 1's 0 x 4 x 3 box
+  // The step a reach allows: never finer than the one given, never 0.5 radian or more.
+  MotionQuantization q;
+  q.translation_step = 0.01f;
+  q.rotation_step = 0.0001f;
+  EXPECT_FLOAT_EQ(RotationStepForReach(q, 2.5f), 0.001f);
+  EXPECT_FLOAT_EQ(RotationStepForReach(q, 100.0f), 0.0001f);
+  EXPECT_FLOAT_EQ(RotationStepForReach(q, 0.0f), 0.5f);
+  EXPECT_FLOAT_EQ(RotationStepForReach(q, 1e-6f), 0.5f);
+}
+
 /// `payload` (EncodeTransforms' byte planes) with its deltas' bytes together again, as
 /// side_info_version 1 stored them.
 std::vector<std::uint8_t> AsInterleaved(const std::vector<std::uint8_t>& payload,

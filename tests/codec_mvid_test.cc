@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "codec/dec/mvid_decoder.h"
@@ -230,6 +231,57 @@ TEST(MvidRoundTripTest, WriterRejectsInconsistentInput) {
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument);
   EXPECT_NE(refused.status().message().find("allow_reorder"), std::string::npos);
+}
+
+TEST(MvidRoundTripTest, AKeyGroupRoundsItsTransformsAboutPivotsWhenThatCodesFewerBytes) {
+  // Deformation nodes 0.5 apart on a unit sphere 20 units from the origin: rounded about the
+  // origin, a rotation step must hold points 22 away; about its node, 1 or so (with a quarter
+  // of the bound).
+  Representation rep;
+  for (Eigen::Vector3f& p : rep.base.positions) p += Eigen::Vector3f(20, 0, 0);
+  rep.motion = testing::DeformationNodes(rep.base, 0.5f);
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 1;
+  settings.motion.translation_step = 1e-4f;
+  settings.motion.rotation_step = 1e-4f / 22;
+  const std::uint32_t segments = rep.motion.segment_count;
+  // A tracked node jitters by a few degrees and millimetres from frame to frame.
+  std::mt19937 random(3);
+  std::normal_distribution<float> jitter(0.0f, 0.02f);
+  std::vector<std::vector<RigidTransform>> jittery(8), translated(8);
+  for (int f = 0; f < 8; ++f) {
+    for (std::uint32_t s = 0; s < segments; ++s) {
+      RigidTransform t;
+      t.rotation = Eigen::AngleAxisf(jitter(random), Eigen::Vector3f(1, 2, 3).normalized());
+      t.translation = Eigen::Vector3f(jitter(random), jitter(random), 0.01f * f);
+      jittery[f].push_back(t);
+      translated[f].push_back(RigidTransform{Eigen::Quaternionf::Identity(), t.translation});
+    }
+  }
+  const auto sink = [](std::span<const std::uint8_t>) { return Status::Ok(); };
+  auto writer = MvidWriter::Create(sink, rep.base, rep.motion, settings, jittery);
+  ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+  EXPECT_GT((*writer)->motion_quantization().rotation_step, 2 * settings.motion.rotation_step);
+  EXPECT_EQ((*writer)->motion_quantization().translation_step, settings.motion.translation_step);
+  // Every base vertex lands within the stated bound of where the track puts it.
+  const auto decoded = (*writer)->DequantizeTransforms(jittery);
+  std::vector<Eigen::Vector3f> expected, posed;
+  for (int f = 0; f < 8; ++f) {
+    PoseVertices((*writer)->motion(), jittery[f], (*writer)->decoded_base().positions, &expected);
+    PoseVertices((*writer)->motion(), decoded[f], (*writer)->decoded_base().positions, &posed);
+    for (std::size_t v = 0; v < posed.size(); ++v) {
+      EXPECT_LE((posed[v] - expected[v]).norm(), std::sqrt(3.0f) * 1e-4f * 1.01f) << f << " " << v;
+    }
+  }
+  // Without rotations the pivots gain nothing: the steps stay the settings'.
+  auto plain = MvidWriter::Create(sink, rep.base, rep.motion, settings, translated);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ((*plain)->motion_quantization().rotation_step, settings.motion.rotation_step);
+  // And so without a track.
+  auto untracked = MvidWriter::Create(sink, rep.base, rep.motion, settings);
+  ASSERT_TRUE(untracked.ok());
+  EXPECT_EQ((*untracked)->motion_quantization().rotation_step, settings.motion.rotation_step);
 }
 
 /// Every readable frame of `bytes` at every level; returns the first error.

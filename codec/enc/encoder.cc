@@ -52,7 +52,9 @@ constexpr double kTransformStepFraction = 1.0 / 8192;
 constexpr double kFinestTransformStepFraction = 1e-6;
 
 /// The transform tracks' quantisation steps (EncoderTuning::transform_step) for a capture
-/// whose first frame's views span `box`, of size `scale` (the box's diagonal).
+/// whose first frame's views span `box`, of size `scale` (the box's diagonal). The rotation
+/// step is the finest a key group uses: one that holds any point of the reach about the
+/// origin; each key group coarsens it to its segments' own reach (MvidWriterSettings::motion).
 StatusOr<MotionQuantization> TransformSteps(const EncoderOptions& o, float scale,
                                             const Eigen::AlignedBox3f& box) {
   double corner = 0;
@@ -292,11 +294,13 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     summary.seconds_base += analysis.seconds_base;
     summary.seconds_tracking += SecondsSince(analysis_start) - analysis.seconds_base;
     if (!writer) {
-      MESHVID_ASSIGN_OR_RETURN(writer, MvidWriter::Create(std::move(sink), analysis.base,
-                                                          analysis.motion, settings));
+      MESHVID_ASSIGN_OR_RETURN(
+          writer, MvidWriter::Create(std::move(sink), analysis.base, analysis.motion, settings,
+                                     analysis.tracks));
       summary.samples_per_frame = writer->subdivision().samples().size();
     } else {
-      MESHVID_RETURN_IF_ERROR(writer->StartKeyGroup(analysis.base, analysis.motion));
+      MESHVID_RETURN_IF_ERROR(
+          writer->StartKeyGroup(analysis.base, analysis.motion, analysis.tracks));
     }
     MESHVID_RETURN_IF_ERROR(
         EncodeKeyGroupDetail(ctx, analysis, writer.get(), &summary, &filled, &hits, &samples));

@@ -62,7 +62,8 @@ inline constexpr double kNoLimit = 1e300;
        "(bench/ENCODE.md).")                                                                   \
   KNOB(double, transform_step, 0, 0, kNoLimit, "--transform-step",                             \
        "Quantisation step of the motion's translations (0: 1/8192 of the size); the rotation " \
-       "step moves no point within reach by more (bench/TRANSFORMS.md).")                      \
+       "step moves no vertex by more, rounded about the origin or, where a key group's track " \
+       "codes smaller so, about each segment's centre (bench/TRANSFORMS.md).")                 \
   /* --- correspondence (docs/encoder-method.md section 2) */                                  \
   KNOB(double, proxy_fraction, 0.05, 0.001, 1, "--proxy-fraction",                             \
        "Share of each view's triangles kept in the frame's proxy, the data the tracker fits.") \

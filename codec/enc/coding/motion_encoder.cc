@@ -37,7 +37,8 @@ Status CheckQuantization(const MotionQuantization& q) {
 }  // namespace
 
 QuantizedTransform QuantizeTransform(const RigidTransform& transform,
-                                     const MotionQuantization& quantization) {
+                                     const MotionQuantization& quantization,
+                                     const Eigen::Vector3f& pivot) {
   // The rotation vector of the shortest rotation (angle in [0, pi]).
   Eigen::Quaternionf r = transform.rotation.normalized();
   if (r.w() < 0) r.coeffs() = -r.coeffs();
@@ -46,9 +47,48 @@ QuantizedTransform QuantizeTransform(const RigidTransform& transform,
   QuantizedTransform q;
   for (int c = 0; c < 3; ++c) {
     q.rotation[c] = QuantizeValue(rotation_vector[c], quantization.rotation_step);
-    q.translation[c] = QuantizeValue(transform.translation[c], quantization.translation_step);
+  }
+  // Where the pivot goes, kept by the translation under the rotation a decoder will use.
+  const Eigen::Vector3f translation = transform.rotation * pivot + transform.translation -
+                                      DequantizeTransform(q, quantization).rotation * pivot;
+  for (int c = 0; c < 3; ++c) {
+    q.translation[c] = QuantizeValue(translation[c], quantization.translation_step);
   }
   return q;
+}
+
+MotionPivots FindMotionPivots(const MotionModel& model,
+                              std::span<const Eigen::Vector3f> positions) {
+  std::vector<Eigen::AlignedBox3f> boxes(model.segment_count);
+  for (std::size_t v = 0; v < model.blends.size() && v < positions.size(); ++v) {
+    const VertexBlend& blend = model.blends[v];
+    for (int i = 0; i < blend.count; ++i) {
+      const std::uint32_t segment = blend.influences[i].segment;
+      if (segment < boxes.size() && blend.influences[i].weight > 0)
+        boxes[segment].extend(positions[v]);
+    }
+  }
+  MotionPivots result;
+  result.pivots.reserve(boxes.size());
+  for (const Eigen::AlignedBox3f& box : boxes) {
+    result.pivots.push_back(box.isEmpty() ? Eigen::Vector3f(Eigen::Vector3f::Zero())
+                                          : Eigen::Vector3f(box.center()));
+    // Half the box's diagonal bounds the distance from its centre to any vertex in it.
+    if (!box.isEmpty()) result.reach = std::max(result.reach, 0.5f * box.diagonal().norm());
+  }
+  return result;
+}
+
+float RotationStepForReach(const MotionQuantization& quantization, float reach) {
+  // A rotation vector rounded to step s is off by at most s * sqrt(3) / 2 radians, which moves
+  // a point at distance `reach` from the pivot by at most that times `reach`; the translation's
+  // own rounding moves it by at most translation_step * sqrt(3) / 2. The rotation is held to a
+  // quarter of that: its rounding jitters the posed surface from frame to frame, which the
+  // displacement video pays for (bench/TRANSFORMS.md).
+  constexpr float kRotationShareOfBound = 0.25f;
+  const float step =
+      reach > 0 ? kRotationShareOfBound * quantization.translation_step / reach : 0.5f;
+  return std::max(quantization.rotation_step, std::min(0.5f, step));
 }
 
 StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
@@ -93,12 +133,18 @@ StatusOr<std::vector<std::uint8_t>> EncodeMotionModel(const MotionModel& model,
   return payload;
 }
 
-StatusOr<EncodedTransforms> EncodeTransforms(
-    const std::vector<std::vector<RigidTransform>>& frames,
-    const MotionQuantization& quantization) {
+namespace {
+
+/// EncodeTransforms with zstd at `level`.
+StatusOr<EncodedTransforms> EncodeTransformsAtLevel(
+    const std::vector<std::vector<RigidTransform>>& frames, const MotionQuantization& quantization,
+    std::span<const Eigen::Vector3f> pivots, int level) {
   MESHVID_RETURN_IF_ERROR(CheckQuantization(quantization));
   if (frames.empty()) return InvalidArgumentError("a group of transforms needs a frame");
   const std::size_t segment_count = frames[0].size();
+  if (!pivots.empty() && pivots.size() != segment_count) {
+    return InvalidArgumentError("a group of transforms needs one pivot per segment or none");
+  }
   ByteWriter header;
   header.PutU32(static_cast<std::uint32_t>(frames.size()));
   header.PutU32(static_cast<std::uint32_t>(segment_count));
@@ -111,7 +157,9 @@ StatusOr<EncodedTransforms> EncodeTransforms(
     }
     std::vector<RigidTransform>& decoded = result.decoded.emplace_back();
     for (std::size_t s = 0; s < segment_count; ++s) {
-      const QuantizedTransform q = QuantizeTransform(frame[s], quantization);
+      const QuantizedTransform q =
+          QuantizeTransform(frame[s], quantization,
+                            pivots.empty() ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : pivots[s]);
       for (int c = 0; c < 3; ++c) body.PutU32(ZigZagDelta(previous[s].rotation[c], q.rotation[c]));
       for (int c = 0; c < 3; ++c) {
         body.PutU32(ZigZagDelta(previous[s].translation[c], q.translation[c]));
@@ -121,9 +169,34 @@ StatusOr<EncodedTransforms> EncodeTransforms(
     }
   }
   result.bytes = header.Release();
-  const std::vector<std::uint8_t> compressed = CompressBlock(SplitBytePlanes(body.bytes()));
+  const std::vector<std::uint8_t> compressed = CompressBlock(SplitBytePlanes(body.bytes()), level);
   result.bytes.insert(result.bytes.end(), compressed.begin(), compressed.end());
   return result;
+}
+
+}  // namespace
+
+StatusOr<EncodedTransforms> EncodeTransforms(const std::vector<std::vector<RigidTransform>>& frames,
+                                             const MotionQuantization& quantization,
+                                             std::span<const Eigen::Vector3f> pivots) {
+  return EncodeTransformsAtLevel(frames, quantization, pivots, /*level=*/19);
+}
+
+StatusOr<std::size_t> EstimateTransformBytes(const std::vector<std::vector<RigidTransform>>& frames,
+                                             std::size_t group_size,
+                                             const MotionQuantization& quantization,
+                                             std::span<const Eigen::Vector3f> pivots) {
+  if (group_size == 0) return InvalidArgumentError("a group holds at least one frame");
+  std::size_t bytes = 0;
+  for (std::size_t first = 0; first < frames.size(); first += group_size) {
+    const std::vector<std::vector<RigidTransform>> group(
+        frames.begin() + first, frames.begin() + std::min(frames.size(), first + group_size));
+    // A faster zstd level than the files' ranks two quantisations alike at a tenth of the time.
+    MESHVID_ASSIGN_OR_RETURN(const EncodedTransforms coded,
+                             EncodeTransformsAtLevel(group, quantization, pivots, /*level=*/9));
+    bytes += coded.bytes.size();
+  }
+  return bytes;
 }
 
 }  // namespace meshvid

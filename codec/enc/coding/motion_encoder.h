@@ -15,8 +15,29 @@
 namespace meshvid {
 
 /// The nearest quantised transform (rotation vector and translation rounded to the steps).
+/// The translation is the one that, with the rounded rotation, moves `pivot` where `transform`
+/// does: the rotation's rounding then displaces a point by its distance from the pivot times
+/// the rotation error, not by its distance from the origin (MotionPivots).
 QuantizedTransform QuantizeTransform(const RigidTransform& transform,
-                                     const MotionQuantization& quantization);
+                                     const MotionQuantization& quantization,
+                                     const Eigen::Vector3f& pivot = Eigen::Vector3f::Zero());
+
+/// The point each segment's transforms are quantised about, and how far from it the segment
+/// reaches.
+struct MotionPivots {
+  std::vector<Eigen::Vector3f> pivots;  ///< per segment: the centre of its vertices' bounding box
+  /// The largest distance from a segment's pivot to a vertex it moves, over all segments.
+  float reach = 0;
+};
+
+/// The pivots of `model`'s segments over base positions `positions` (one per blend). A
+/// segment that moves no vertex gets the origin.
+MotionPivots FindMotionPivots(const MotionModel& model, std::span<const Eigen::Vector3f> positions);
+
+/// The rotation step whose rounding moves no vertex of a segment reaching `reach` from its
+/// pivot by more than a quarter of what a translation step's does (below 0.5 radian, and never
+/// finer than `quantization`'s own).
+float RotationStepForReach(const MotionQuantization& quantization, float reach);
 
 /// MOTN payload for `model`; weights are stored in 1/65535 steps, the last influence of a
 /// vertex taking the remainder. Fails if the model is invalid or a step is not positive.
@@ -32,9 +53,17 @@ struct EncodedTransforms {
 /// Codes `frames[frame][segment]`; every frame must have the same number of segments.
 /// The first frame of the group is coded from zero, so every group decodes on its own. The
 /// deltas are written as byte planes (TransformByteOrder::kBytePlanes, side_info_version 2).
-StatusOr<EncodedTransforms> EncodeTransforms(
-    const std::vector<std::vector<RigidTransform>>& frames,
-    const MotionQuantization& quantization);
+/// `pivots` (one per segment, or empty: the origin) are those of QuantizeTransform.
+StatusOr<EncodedTransforms> EncodeTransforms(const std::vector<std::vector<RigidTransform>>& frames,
+                                             const MotionQuantization& quantization,
+                                             std::span<const Eigen::Vector3f> pivots = {});
+
+/// About the bytes EncodeTransforms gives `frames` (a key group's track) coded in groups of
+/// `group_size` frames: to choose between quantisations without coding at the files' level.
+StatusOr<std::size_t> EstimateTransformBytes(const std::vector<std::vector<RigidTransform>>& frames,
+                                             std::size_t group_size,
+                                             const MotionQuantization& quantization,
+                                             std::span<const Eigen::Vector3f> pivots = {});
 
 }  // namespace meshvid
 

@@ -14,9 +14,9 @@ namespace meshvid {
 
 MvidWriter::~MvidWriter() = default;
 
-StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const TriangleMesh& base,
-                                                         const MotionModel& motion,
-                                                         const MvidWriterSettings& settings) {
+StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(
+    ByteSink sink, const TriangleMesh& base, const MotionModel& motion,
+    const MvidWriterSettings& settings, const std::vector<std::vector<RigidTransform>>& track) {
   if (settings.gof_size < 1 || settings.gof_size > 1024) {
     return InvalidArgumentError("frames per group must be in 1..1024, got " +
                                 std::to_string(settings.gof_size));
@@ -34,11 +34,12 @@ StatusOr<std::unique_ptr<MvidWriter>> MvidWriter::Create(ByteSink sink, const Tr
   std::unique_ptr<MvidWriter> writer(new MvidWriter());
   writer->settings_ = settings;
   writer->container_ = std::make_unique<ContainerWriter>(std::move(sink));
-  MESHVID_RETURN_IF_ERROR(writer->StartKeyGroup(base, motion));
+  MESHVID_RETURN_IF_ERROR(writer->StartKeyGroup(base, motion, track));
   return writer;
 }
 
-Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& motion) {
+Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& motion,
+                                 const std::vector<std::vector<RigidTransform>>& track) {
   MESHVID_RETURN_IF_ERROR(ValidateMotionModel(motion, base.vertex_count()));
   if (!motion.surface_triangles.empty() &&
       motion.surface_triangles.size() != base.triangle_count()) {
@@ -74,8 +75,30 @@ Status MvidWriter::StartKeyGroup(const TriangleMesh& base, const MotionModel& mo
   }
   MESHVID_ASSIGN_OR_RETURN(RegularSubdivision subdivision,
                            RegularSubdivision::Create(base_coded.decoded, settings_.levels));
+  // The transforms rounded about the origin at the settings' steps, or about their segments'
+  // pivots at the coarser rotation step their reach allows, whichever codes the track in
+  // fewer bytes: the pivots save the rotations' bits where the segments are small, but carry
+  // the rotations' rounding into the translations, which costs more on smooth rigid motion.
+  MotionQuantization quantization = settings_.motion;
+  MotionPivots pivots;
+  if (!track.empty()) {
+    MotionPivots candidate = FindMotionPivots(ordered, base_coded.decoded.positions);
+    MotionQuantization coarse = settings_.motion;
+    coarse.rotation_step = RotationStepForReach(settings_.motion, candidate.reach);
+    const auto group = static_cast<std::size_t>(settings_.gof_size);
+    MESHVID_ASSIGN_OR_RETURN(const std::size_t about_origin,
+                             EstimateTransformBytes(track, group, quantization));
+    MESHVID_ASSIGN_OR_RETURN(const std::size_t about_pivots,
+                             EstimateTransformBytes(track, group, coarse, candidate.pivots));
+    if (about_pivots < about_origin) {
+      quantization = coarse;
+      pivots = std::move(candidate);
+    }
+  }
   MESHVID_ASSIGN_OR_RETURN(const std::vector<std::uint8_t> motion_bytes,
-                           EncodeMotionModel(ordered, settings_.motion));
+                           EncodeMotionModel(ordered, quantization));
+  quantization_ = quantization;
+  pivots_ = std::move(pivots);
   decoded_base_ = std::move(base_coded.decoded);
   subdivision_ = std::move(subdivision);
   layout_ = DisplacementLayout::ForSubdivision(subdivision_, settings_.packing);
@@ -114,8 +137,11 @@ std::vector<std::vector<RigidTransform>> MvidWriter::DequantizeTransforms(
   std::vector<std::vector<RigidTransform>> result;
   for (const auto& frame : transforms) {
     auto& out = result.emplace_back();
-    for (const RigidTransform& t : frame) {
-      out.push_back(DequantizeTransform(QuantizeTransform(t, settings_.motion), settings_.motion));
+    for (std::size_t s = 0; s < frame.size(); ++s) {
+      const Eigen::Vector3f pivot =
+          s < pivots_.pivots.size() ? pivots_.pivots[s] : Eigen::Vector3f(Eigen::Vector3f::Zero());
+      out.push_back(
+          DequantizeTransform(QuantizeTransform(frame[s], quantization_, pivot), quantization_));
     }
   }
   return result;
@@ -156,7 +182,7 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
   }
   const DisplacementRange range = DisplacementRange::Covering(lowest, highest);
   MESHVID_ASSIGN_OR_RETURN(const EncodedTransforms coded_transforms,
-                           EncodeTransforms(transforms, settings_.motion));
+                           EncodeTransforms(transforms, quantization_, pivots_.pivots));
 
   // One encoder session per group keeps every group self-contained.
   VideoEncoding video;

@@ -10,6 +10,7 @@
 
 #include "codec/common/displacement_image.h"
 #include "codec/common/motion.h"
+#include "codec/enc/coding/motion_encoder.h"
 #include "codec/common/subdivision.h"
 #include "codec/dec/motion_decoder.h"
 #include "codec/enc/coding/base_mesh_encoder.h"
@@ -32,6 +33,10 @@ struct MvidWriterSettings {
   int gof_size = 32;          ///< frames per group (the random-access unit)
   double frame_rate = 25.0;
   std::uint32_t frame_count = 0;  ///< total frames if known up front (0: unknown)
+  /// The transforms' steps. A key group whose track is given to StartKeyGroup may instead
+  /// keep the translation step and coarsen the rotation step to its segments' reach
+  /// (RotationStepForReach), its transforms rounded about their segments' pivots
+  /// (FindMotionPivots), when that codes its track in fewer bytes.
   MotionQuantization motion;
   /// The base mesh coder; `base.allow_reorder` must stay false (Create refuses it).
   BaseMeshEncoding base;
@@ -45,15 +50,20 @@ struct MvidWriterSettings {
 class MvidWriter {
  public:
   ~MvidWriter();
-  /// `motion` has one blend per base vertex. Writes the header, base mesh and motion.
-  static StatusOr<std::unique_ptr<MvidWriter>> Create(ByteSink sink, const TriangleMesh& base,
-                                                      const MotionModel& motion,
-                                                      const MvidWriterSettings& settings);
+  /// `motion` has one blend per base vertex. Writes the header, base mesh and motion; `track`
+  /// as StartKeyGroup's.
+  static StatusOr<std::unique_ptr<MvidWriter>> Create(
+      ByteSink sink, const TriangleMesh& base, const MotionModel& motion,
+      const MvidWriterSettings& settings,
+      const std::vector<std::vector<RigidTransform>>& track = {});
 
   /// Starts the next key group: codes `base` and `motion` (one blend per base vertex); the
   /// groups written after it use them. Use decoded_base() and motion() from here on: Draco may
-  /// renumber the base's vertices and triangles. The current key group must hold a group already.
-  Status StartKeyGroup(const TriangleMesh& base, const MotionModel& motion);
+  /// renumber the base's vertices and triangles. The current key group must hold a group
+  /// already. `track` (the key group's transforms [frame][segment], or empty) chooses its
+  /// transforms' quantisation (MvidWriterSettings::motion).
+  Status StartKeyGroup(const TriangleMesh& base, const MotionModel& motion,
+                       const std::vector<std::vector<RigidTransform>>& track = {});
   /// Key groups started so far.
   int key_group_count() const { return key_groups_; }
 
@@ -63,6 +73,8 @@ class MvidWriter {
   /// The current key group's motion model in decoded_base()'s order (Draco may renumber the
   /// base: the model given to StartKeyGroup, its blends and mask moved accordingly).
   const MotionModel& motion() const { return motion_; }
+  /// The current key group's transform steps, as its MOTN states them.
+  const MotionQuantization& motion_quantization() const { return quantization_; }
   /// The current key group's displacement lattice; displacement fields hold samples() in its
   /// order.
   const RegularSubdivision& subdivision() const { return subdivision_; }
@@ -87,6 +99,8 @@ class MvidWriter {
   std::unique_ptr<ContainerWriter> container_;
   TriangleMesh decoded_base_;
   MotionModel motion_;
+  MotionQuantization quantization_;  ///< the current key group's
+  MotionPivots pivots_;              ///< the current key group's segments'
   RegularSubdivision subdivision_;
   DisplacementLayout layout_;
   MvidWriteStats stats_;

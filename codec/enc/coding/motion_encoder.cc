@@ -157,9 +157,7 @@ StatusOr<EncodedTransforms> EncodeTransformsAtLevel(
     }
     std::vector<RigidTransform>& decoded = result.decoded.emplace_back();
     for (std::size_t s = 0; s < segment_count; ++s) {
-      const QuantizedTransform q =
-          QuantizeTransform(frame[s], quantization,
-                            pivots.empty() ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : pivots[s]);
+      const QuantizedTransform q = QuantizeTransform(frame[s], quantization, PivotOf(pivots, s));
       for (int c = 0; c < 3; ++c) body.PutU32(ZigZagDelta(previous[s].rotation[c], q.rotation[c]));
       for (int c = 0; c < 3; ++c) {
         body.PutU32(ZigZagDelta(previous[s].translation[c], q.translation[c]));

@@ -30,6 +30,12 @@ struct MotionPivots {
   float reach = 0;
 };
 
+/// Segment `segment`'s pivot in `pivots`, or the origin where `pivots` has none (empty: every
+/// segment rounded about the origin).
+inline Eigen::Vector3f PivotOf(std::span<const Eigen::Vector3f> pivots, std::size_t segment) {
+  return segment < pivots.size() ? pivots[segment] : Eigen::Vector3f(Eigen::Vector3f::Zero());
+}
+
 /// The pivots of `model`'s segments over base positions `positions` (one per blend). A
 /// segment that moves no vertex gets the origin.
 MotionPivots FindMotionPivots(const MotionModel& model, std::span<const Eigen::Vector3f> positions);

@@ -138,10 +138,9 @@ std::vector<std::vector<RigidTransform>> MvidWriter::DequantizeTransforms(
   for (const auto& frame : transforms) {
     auto& out = result.emplace_back();
     for (std::size_t s = 0; s < frame.size(); ++s) {
-      const Eigen::Vector3f pivot =
-          s < pivots_.pivots.size() ? pivots_.pivots[s] : Eigen::Vector3f(Eigen::Vector3f::Zero());
-      out.push_back(
-          DequantizeTransform(QuantizeTransform(frame[s], quantization_, pivot), quantization_));
+      const QuantizedTransform q =
+          QuantizeTransform(frame[s], quantization_, PivotOf(pivots_.pivots, s));
+      out.push_back(DequantizeTransform(q, quantization_));
     }
   }
   return result;

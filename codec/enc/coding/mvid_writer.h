@@ -10,10 +10,10 @@
 
 #include "codec/common/displacement_image.h"
 #include "codec/common/motion.h"
-#include "codec/enc/coding/motion_encoder.h"
 #include "codec/common/subdivision.h"
 #include "codec/dec/motion_decoder.h"
 #include "codec/enc/coding/base_mesh_encoder.h"
+#include "codec/enc/coding/motion_encoder.h"
 #include "codec/enc/summary.h"
 #include "format/container_writer.h"
 #include "format/status.h"

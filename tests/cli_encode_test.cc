@@ -123,6 +123,12 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
       dir);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("unknown tuning key 'rigid_groups'"), std::string::npos) << run.err;
+  // Every --tune counts, not only the last one.
+  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                                "' --tune rigid_groups=1 --tune node_spacing=0.05 -q",
+                            dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("unknown tuning key 'rigid_groups'"), std::string::npos) << run.err;
   // A JSON file of knobs is read as KEY=VALUE entries are, and checked the same.
   testing::WriteFile(dir.File("tune.json"), R"({"node_spacing": 0.05, "window": 1})");
   run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +

@@ -393,7 +393,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Most key groups; 1 keeps one base and one connectivity for the whole "
                   "capture (for editing), 0: no limit")
       ->capture_default_str();
-  cmd->add_option("--tune", args->tune,
+  // Triggered on each occurrence (so that `--tune help` prints before the required arguments
+  // are checked), which clears the option's results each time: the entries are collected here.
+  cmd->add_option("--tune",
                   "Set an internal of the encoder: KEY=VALUE, or a JSON file of them "
                   "({\"node_spacing\": 0.03}); repeatable, later ones win. `--tune help` "
                   "lists every key with its default and range (docs/tuning.md)")
@@ -401,8 +403,11 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->expected(1)
       ->take_all()
       ->trigger_on_parse()
-      ->each([](const std::string& entry) {
-        if (entry != "help") return;
+      ->each([args](const std::string& entry) {
+        if (entry != "help") {
+          args->tune.push_back(entry);
+          return;
+        }
         std::fputs(TuningHelp().c_str(), stdout);
         throw CLI::Success();
       });

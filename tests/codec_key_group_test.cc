@@ -301,6 +301,29 @@ TEST(KeyGroups, TheGainAFreshBaseMustBringFollowsTheQuality) {
   EXPECT_DOUBLE_EQ(RebaseGainDb(options), 3.0);
   options.quality = 80;
   EXPECT_DOUBLE_EQ(RebaseGainDb(options), 0.375);
+  options.quality = 100;
+  EXPECT_DOUBLE_EQ(RebaseGainDb(options), 0.375);
+}
+
+TEST(KeyGroups, BelowQuality20TheBaseCoarsens) {
+  EXPECT_DOUBLE_EQ(BaseCoarsening(100), 1.0);
+  EXPECT_DOUBLE_EQ(BaseCoarsening(20), 1.0);
+  EXPECT_DOUBLE_EQ(BaseCoarsening(10), 2.0);
+  EXPECT_DOUBLE_EQ(BaseCoarsening(0), 4.0);
+  // At quality 40 the decimation's bounds stop the spheres' base far above its target;
+  // quality 0 aims at a quarter of the target and frees the bounds to reach it. Quality 100
+  // keeps quality 40's base.
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(3, 0.005f, /*jump_frame=*/1000);
+  EncoderOptions options = TestOptions();
+  const Encoded at40 = Encode(frames, options);
+  options.quality = 100;
+  const Encoded at100 = Encode(frames, options);
+  options.quality = 0;
+  const Encoded at0 = Encode(frames, options);
+  EXPECT_EQ(at100.summary.base_vertices, at40.summary.base_vertices);
+  EXPECT_GT(at40.summary.base_vertices, options.base_vertices);
+  EXPECT_LE(at0.summary.base_vertices, options.base_vertices / 4);
+  EXPECT_LT(at0.bytes.size(), at40.bytes.size());
 }
 
 TEST(KeyGroups, ByDefaultATeleportedBlockStartsANewKeyGroupExactlyThere) {

@@ -12,7 +12,13 @@
 namespace meshvid {
 
 double RebaseGainDb(const EncoderOptions& options) {
-  return options.rebase_gain_db * std::exp2((40.0 - options.quality) / 20.0);
+  // Above kFinestRebasingQuality more key groups gain nothing measurable (bench/QUALITY.md).
+  const int quality = std::min(options.quality, kFinestRebasingQuality);
+  return options.rebase_gain_db * std::exp2((40.0 - quality) / 20.0);
+}
+
+double BaseCoarsening(int quality) {
+  return std::exp2(std::max(0.0, (20.0 - std::clamp(quality, 0, 100)) / 10.0));
 }
 
 int QualityToQp(VideoCodec codec, int quality) {

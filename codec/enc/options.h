@@ -49,13 +49,14 @@ inline constexpr double kNoLimit = 1e300;
   KNOB(double, base_max_error, 0, 0, kNoLimit, "--base-max-error",                             \
        "Largest surface change a decimation step of the base may make, in scene units (0: 1% " \
        "of the size), so that displacements along the base's normals stay one-to-one with "    \
-       "the data.")                                                                            \
+       "the data. Given at quality 20 and above, x4 every 10 quality steps below.")            \
   KNOB(double, base_max_normal_deviation_degrees, 30, 0, 180, "--base-max-normal-deviation",   \
-       "Largest turn of a face normal a decimation step of the base may make, in degrees.")    \
+       "Largest turn of a face normal a decimation step of the base may make, in degrees. "    \
+       "Given at quality 20 and above, x4 every 10 quality steps below (at most 180).")        \
   KNOB(double, base_max_edge, 0, 0, kNoLimit, "--base-max-edge",                               \
        "Longest edge the base decimation leaves (0: 3% of the size, under the nodes' "         \
        "spacing): quadrics alone collapse a straight tube into slivers that cannot bend with " \
-       "it.")                                                                                  \
+       "it. Given at quality 20 and above, x4 every 10 quality steps below.")                  \
   KNOB(int, base_position_bits, 10, 8, 24, "--base-bits",                                      \
        "Draco position quantisation of the base meshes, in bits per coordinate of the "        \
        "bounding box; the displacements correct what it moves along the normals "              \
@@ -63,7 +64,8 @@ inline constexpr double kNoLimit = 1e300;
   KNOB(double, transform_step, 0, 0, kNoLimit, "--transform-step",                             \
        "Quantisation step of the motion's translations (0: 1/8192 of the size); the rotation " \
        "step moves no vertex by more, rounded about the origin or, where a key group's track " \
-       "codes smaller so, about each segment's centre (bench/TRANSFORMS.md).")                 \
+       "codes smaller so, about each segment's centre (bench/TRANSFORMS.md). Given at "        \
+       "quality 20 and above, doubled every 10 quality steps below.")                          \
   /* --- correspondence (docs/encoder-method.md section 2) */                                  \
   KNOB(double, proxy_fraction, 0.05, 0.001, 1, "--proxy-fraction",                             \
        "Share of each view's triangles kept in the frame's proxy, the data the tracker fits.") \
@@ -178,7 +180,9 @@ struct EncoderOptions {
   /// A user base mesh (an animator's control model), rigidly fitted to frame 0. Empty: fuse
   /// frame 0's views and decimate.
   std::optional<TriangleMesh> base_mesh;
-  std::size_t base_vertices = 2000;  ///< automatic base: target vertex count after decimation
+  /// Automatic base: target vertex count after decimation, at quality 20 and above; halved
+  /// every 10 quality steps below (BaseCoarsening).
+  std::size_t base_vertices = 2000;
   // --- detail
   /// Subdivision levels of the displacement lattice: the finest resolution a decoder can
   /// choose. A level finer than the data's detail costs bytes for no accuracy
@@ -200,7 +204,8 @@ struct EncoderOptions {
   // --- key groups (a fresh base where it is worth its bytes)
   /// The D1 (dB) a fresh base must be estimated to gain over the tracked one at a frame for a
   /// new key group to start there, at quality 40; it doubles every 20 quality steps below and
-  /// halves every 20 above (RebaseGainDb), as a video encoder's lambda follows its quantiser.
+  /// halves every 20 above up to 80 (RebaseGainDb), as a video encoder's lambda follows its
+  /// quantiser.
   /// The gain is estimated from the frame's data (TrackingLossDb): what the tracked base's
   /// displacements cannot reach, and the surface it leaves where a camera saw through.
   double rebase_gain_db = kDefaultRebaseGainDb;
@@ -214,8 +219,21 @@ struct EncoderOptions {
   EncoderTuning tuning;
 };
 
-/// The gain a fresh base must bring at `quality` (EncoderOptions::rebase_gain_db at 40).
+/// The quality above which the gain a fresh base must bring stops falling.
+inline constexpr int kFinestRebasingQuality = 80;
+
+/// The gain a fresh base must bring at `quality` (EncoderOptions::rebase_gain_db at 40,
+/// doubling every 20 steps below and halving every 20 above, up to kFinestRebasingQuality).
 double RebaseGainDb(const EncoderOptions& options);
+
+/// How much coarser than their settings the base mesh and the motion are made at `quality`:
+/// 1 at 20 and above, doubling every 10 quality steps below (4 at 0). The base's target vertex
+/// count is divided by it and the transforms' step (tuning.transform_step) multiplied by it;
+/// the base decimation's bounds (tuning.base_max_error, base_max_edge,
+/// base_max_normal_deviation_degrees) are multiplied by its square, so that at low qualities
+/// the target sets the base's size. From 20 up the video's quantiser is the cheaper lever;
+/// below, it barely moves D1 and the base's resolution does (bench/QUALITY.md).
+double BaseCoarsening(int quality);
 
 /// The video quantiser `quality` maps to for `codec` (HEVC QP 0..51, AV1 CRF 0..63).
 int QualityToQp(VideoCodec codec, int quality);

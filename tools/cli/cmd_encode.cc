@@ -369,7 +369,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--quality", o.quality,
                   "0 (smallest) .. 100 (finest); sets the video quantiser (AV1 CRF = "
-                  "63 x (1 - q/100), HEVC QP = 51 x (1 - q/100)); FFV1 is lossless")
+                  "63 x (1 - q/100), HEVC QP = 51 x (1 - q/100); FFV1 is lossless) and the "
+                  "--rebase-gain; below 20 also a coarser base mesh and motion (half the base's "
+                  "vertices and twice the transform step every 10 steps down)")
       ->capture_default_str();
   cmd->add_option("--levels", o.levels,
                   "Subdivision levels of the displacement lattice: the finest resolution a "
@@ -385,7 +387,7 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
          "estimated to gain more than this D1, in dB, over the tracked base: from the "
          "captured points the tracked base's displacements cannot reach and its "
          "surface lying where a camera saw through (--tune seen_free_space). Given at quality "
-         "40; doubled every 20 quality steps below, halved every 20 above. Smaller: "
+         "40; doubled every 20 quality steps below, halved every 20 above up to 80. Smaller: "
          "more key groups, closer to per-frame fusion; 0: a new key group wherever "
          "tracking loses anything")
       ->capture_default_str();
@@ -415,7 +417,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "
                   "first frame, instead of fusing that frame's views");
   cmd->add_option("--base-vertices", o.base_vertices,
-                  "Vertices of the automatic base mesh after decimation")
+                  "Vertices of the automatic base mesh after decimation, at quality 20 and "
+                  "above (a target: the decimation's bounds may stop it sooner); halved every "
+                  "10 quality steps below")
       ->capture_default_str();
   cmd->add_flag("--hide-unseen", o.hide_unseen,
                 "Leave out of the decoded surface the base triangles no view saw in any frame "

@@ -103,13 +103,17 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
     return base;
   }
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseFrame(ctx, views, fusion_points));
+  // Lower qualities coarsen the target and the bounds (the lengths are coarsened already).
+  const double coarsening = BaseCoarsening(options.quality);
   DecimationOptions decimation;
-  decimation.target_vertices = options.base_vertices;
+  decimation.target_vertices = std::max<std::size_t>(
+      4, static_cast<std::size_t>(std::lround(options.base_vertices / coarsening)));
   decimation.max_error = ctx.lengths.base_max_error;
-  decimation.max_normal_deviation_degrees = options.tuning.base_max_normal_deviation_degrees;
+  decimation.max_normal_deviation_degrees =
+      std::min(180.0, coarsening * coarsening * options.tuning.base_max_normal_deviation_degrees);
   decimation.max_edge_length = ctx.lengths.base_max_edge;
   TriangleMesh base = std::move(fused);
-  if (base.vertex_count() > options.base_vertices) {
+  if (base.vertex_count() > decimation.target_vertices) {
     MESHVID_ASSIGN_OR_RETURN(base, DecimateMesh(base, decimation));
   }
   // One vertex per fan, as the base mesh coder keeps them (its vertex order found again).

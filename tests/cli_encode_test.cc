@@ -123,10 +123,11 @@ TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {
       dir);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("unknown tuning key 'rigid_groups'"), std::string::npos) << run.err;
-  // Every --tune counts, not only the last one.
-  run = testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
-                                "' --tune rigid_groups=1 --tune node_spacing=0.05 -q",
-                            dir);
+  // Every --tune counts, not only the first or the last one.
+  run =
+      testing::RunMeshvid("encode '" + dir.File("cap/manifest.json") + "' -o '" + out +
+                              "' --tune node_spacing=0.05 --tune rigid_groups=1 --tune window=4 -q",
+                          dir);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("unknown tuning key 'rigid_groups'"), std::string::npos) << run.err;
   // A JSON file of knobs is read as KEY=VALUE entries are, and checked the same.

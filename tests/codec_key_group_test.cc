@@ -636,6 +636,15 @@ TEST(TransformSteps, FollowTheSizeByDefaultAndTheOptionWhenSet) {
   const MotionQuantization stated = StatedSteps(set.bytes);
   EXPECT_FLOAT_EQ(stated.translation_step, 0.001f);
   EXPECT_FLOAT_EQ(stated.rotation_step, float(0.001 / (corner + scale)));
+  // Below quality 20 the step coarsens: twice as coarse at 10, four times at 0.
+  options.tuning.transform_step = 0;
+  options.quality = 10;
+  EXPECT_FLOAT_EQ(StatedSteps(Encode(frames, options).bytes).translation_step,
+                  float(2 * scale / 8192));
+  options.quality = 0;
+  EXPECT_FLOAT_EQ(StatedSteps(Encode(frames, options).bytes).translation_step,
+                  float(4 * scale / 8192));
+  options.quality = TestOptions().quality;
   // Both decode close to the data (2% of the 1.8 scene diagonal, as the jump test).
   for (const Encoded* encoded : {&by_size, &set}) {
     for (const double error : DecodedErrors(encoded->bytes, frames)) EXPECT_LT(error, 0.02);

@@ -31,7 +31,7 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
   l.node_spacing = pick(o.tuning.node_spacing, 0.04);
   // Edge bounds for the deformation's nodes (4% apart) to bend the base and find data along
-  // it.
+  // it (at quality 20 and above; below, the base coarsens with the bounds).
   l.base_max_edge = base_bounds * pick(o.tuning.base_max_edge, 0.03);
   l.proxy_max_edge = pick(o.tuning.proxy_max_edge, 0.04);
   l.farthest_growth =
@@ -63,14 +63,14 @@ StatusOr<MotionQuantization> TransformSteps(const EncoderOptions& o, float scale
     const auto which = static_cast<Eigen::AlignedBox3f::CornerType>(c);
     corner = std::max(corner, double(box.corner(which).norm()));
   }
-  const double translation =
-      BaseCoarsening(o.quality) *
-      (o.tuning.transform_step > 0 ? o.tuning.transform_step : kTransformStepFraction * scale);
-  if (translation < kFinestTransformStepFraction * scale) {
-    return InvalidArgumentError("tuning.transform_step " + std::to_string(translation) +
+  const double given =
+      o.tuning.transform_step > 0 ? o.tuning.transform_step : kTransformStepFraction * scale;
+  if (given < kFinestTransformStepFraction * scale) {
+    return InvalidArgumentError("tuning.transform_step " + std::to_string(given) +
                                 " is finer than 1e-6 of the capture's size (" +
                                 std::to_string(scale) + ")");
   }
+  const double translation = BaseCoarsening(o.quality) * given;
   MotionQuantization steps;
   steps.translation_step = static_cast<float>(translation);
   // Below 1 radian as MOTN requires (a step that coarse would not be useful anyway).

@@ -226,9 +226,10 @@ inline constexpr int kFinestRebasingQuality = 80;
 /// doubling every 20 steps below and halving every 20 above, up to kFinestRebasingQuality).
 double RebaseGainDb(const EncoderOptions& options);
 
-/// How much coarser than their settings the base mesh and the motion are made at `quality`:
-/// 1 at 20 and above, doubling every 10 quality steps below (4 at 0). The base's target vertex
-/// count is divided by it and the transforms' step (tuning.transform_step) multiplied by it;
+/// How much coarser than their settings the automatic base mesh (not a user's) and the
+/// motion are made at `quality`: 1 at 20 and above, doubling every 10 quality steps below (4 at
+/// 0). The base's target vertex count is divided by it and the transforms' step
+/// (tuning.transform_step) multiplied by it;
 /// the base decimation's bounds (tuning.base_max_error, base_max_edge,
 /// base_max_normal_deviation_degrees) are multiplied by its square, so that at low qualities
 /// the target sets the base's size. From 20 up the video's quantiser is the cheaper lever;

@@ -91,7 +91,8 @@ void AddTranscodeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->check(CLI::IsMember({"av1", "hevc", "ffv1"}));
   cmd->add_option("--quality", args->options.quality,
-                  "0 (smallest) .. 100 (finest), as in `meshvid encode`; FFV1 is lossless")
+                  "0 (smallest) .. 100 (finest): the video quantiser as `meshvid encode` sets "
+                  "it (the base and motion are copied as they are); FFV1 is lossless")
       ->capture_default_str()
       ->check(CLI::Range(0, 100));
   cmd->add_option("--effort", args->options.effort, "Video encoder effort 0 (fastest) .. 9")

@@ -26,13 +26,12 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   // where key groups may be cut, a frame beyond a narrow range gets a fresh base instead.
   l.detail_max_distance = pick(o.tuning.detail_max_distance, o.max_key_groups == 1 ? 0.02 : 0.005);
   l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
-  const auto base_bounds = static_cast<float>(std::pow(BaseCoarsening(o.quality), 2));
-  l.base_max_error = base_bounds * pick(o.tuning.base_max_error, 0.01);
+  l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
   l.node_spacing = pick(o.tuning.node_spacing, 0.04);
   // Edge bounds for the deformation's nodes (4% apart) to bend the base and find data along
-  // it (at quality 20 and above; below, the base coarsens with the bounds).
-  l.base_max_edge = base_bounds * pick(o.tuning.base_max_edge, 0.03);
+  // it (at quality 20 and above; below, the base coarsens with its bounds: MakeBaseMesh).
+  l.base_max_edge = pick(o.tuning.base_max_edge, 0.03);
   l.proxy_max_edge = pick(o.tuning.proxy_max_edge, 0.04);
   l.farthest_growth =
       o.tuning.farthest_growth > 0 ? static_cast<float>(o.tuning.farthest_growth) : l.max_distance;

@@ -33,7 +33,7 @@ struct EncodeArguments {
   std::string codec{VideoCodecName(EncoderOptions{}.codec)};  ///< --codec, the encoder's default
   std::string frames;
   std::string summary_json;
-  std::vector<std::string> tune;  ///< --tune: KEY=VALUE, FILE.json or help
+  std::vector<std::string> tune;  ///< --tune: KEY=VALUE or FILE.json entries, in order
   bool quiet = false;
   EncoderOptions options;
 };

@@ -103,15 +103,16 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
     return base;
   }
   MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseFrame(ctx, views, fusion_points));
-  // Lower qualities coarsen the target and the bounds (the lengths are coarsened already).
+  // Lower qualities divide the target by the coarsening and multiply the bounds by its square.
   const double coarsening = BaseCoarsening(options.quality);
+  const double bounds = coarsening * coarsening;
   DecimationOptions decimation;
   decimation.target_vertices = std::max<std::size_t>(
       4, static_cast<std::size_t>(std::lround(options.base_vertices / coarsening)));
-  decimation.max_error = ctx.lengths.base_max_error;
+  decimation.max_error = static_cast<float>(bounds) * ctx.lengths.base_max_error;
   decimation.max_normal_deviation_degrees =
-      std::min(180.0, coarsening * coarsening * options.tuning.base_max_normal_deviation_degrees);
-  decimation.max_edge_length = ctx.lengths.base_max_edge;
+      std::min(180.0, bounds * options.tuning.base_max_normal_deviation_degrees);
+  decimation.max_edge_length = static_cast<float>(bounds) * ctx.lengths.base_max_edge;
   TriangleMesh base = std::move(fused);
   if (base.vertex_count() > decimation.target_vertices) {
     MESHVID_ASSIGN_OR_RETURN(base, DecimateMesh(base, decimation));

@@ -599,8 +599,8 @@ TEST(KeyGroups, BadKeyGroupSettingsAreNamed) {
   EXPECT_NE(summary.status().message().find("deform_backward_frames"), std::string::npos);
 }
 
-/// The transform quantisation steps key group 0's MOTN states.
-MotionQuantization StatedSteps(const std::vector<std::uint8_t>& bytes) {
+/// The motion model and transform steps key group 0's MOTN states.
+DecodedMotion StatedMotion(const std::vector<std::uint8_t>& bytes) {
   auto decoder = MvidDecoder::OpenMemory(bytes);
   auto reader = ContainerReader::OpenMemory(bytes);
   EXPECT_TRUE(decoder.ok() && reader.ok());
@@ -610,7 +610,27 @@ MotionQuantization StatedSteps(const std::vector<std::uint8_t>& bytes) {
   if (!payload.ok()) return {};
   auto motion = DecodeMotionModel(*payload, (*decoder)->info().base_vertices);
   EXPECT_TRUE(motion.ok()) << motion.status().ToString();
-  return motion.ok() ? motion->quantization : MotionQuantization{};
+  return motion.ok() ? *motion : DecodedMotion{};
+}
+
+/// The transform quantisation steps key group 0's MOTN states.
+MotionQuantization StatedSteps(const std::vector<std::uint8_t>& bytes) {
+  return StatedMotion(bytes).quantization;
+}
+
+TEST(NodeSpacing, IsTheSettingFromQuality20UpAndCoarsensBelow) {
+  // The spacing the file states is the option's (TestOptions) at 20 and up, 1.41 times it
+  // at 10 and twice it at 0, where the base it moves is 2 and 4 times coarser.
+  const std::vector<TriangleMesh> frames = TwoBodyFrames(3, 0.01f, /*jump_frame=*/1000);
+  EncoderOptions options = TestOptions();
+  const float given = static_cast<float>(options.tuning.node_spacing);
+  for (const auto& [quality, factor] : {std::pair{100, 1.0}, {20, 1.0}, {10, M_SQRT2}, {0, 2.0}}) {
+    options.quality = quality;
+    const Encoded encoded = Encode(frames, options);
+    const MotionModel motion = StatedMotion(encoded.bytes).model;
+    EXPECT_FLOAT_EQ(motion.node_spacing, static_cast<float>(factor * given)) << quality;
+    EXPECT_GT(motion.segment_count, 1u) << quality;
+  }
 }
 
 TEST(TransformSteps, FollowTheSizeByDefaultAndTheOptionWhenSet) {

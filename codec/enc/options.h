@@ -81,7 +81,8 @@ inline constexpr double kNoLimit = 1e300;
   KNOB(double, tolerance, 0, 0, kNoLimit, "--tol",                                             \
        "The tracker's finest correspondence radius is twice this (0: 0.5% of the size).")      \
   KNOB(double, node_spacing, 0, 0, kNoLimit, "--node-spacing",                                 \
-       "Distance between the deformation's nodes along the base surface (0: 4% of the size).") \
+       "Distance between the deformation's nodes along the base surface (0: 4% of the "        \
+       "size). Given at quality 20 and above; below, multiplied by 1.41 every 10 steps down.") \
   KNOB(double, deform_rigidity, 0.1, 1e-6, kNoLimit, "--rigidity",                             \
        "Weight of neighbouring nodes agreeing on each other's positions, against the data.")   \
   KNOB(double, deform_coarse_stiffness, 100, 1, 1000, "--coarse-stiffness",                    \
@@ -229,7 +230,8 @@ double RebaseGainDb(const EncoderOptions& options);
 /// How much coarser than their settings the automatic base mesh (not a user's) and the
 /// motion are made at `quality`: 1 at 20 and above, doubling every 10 quality steps below (4 at
 /// 0). The base's target vertex count is divided by it and the transforms' step
-/// (tuning.transform_step) multiplied by it;
+/// (tuning.transform_step) multiplied by it, the deformation's node spacing
+/// (tuning.node_spacing) by its square root;
 /// the base decimation's bounds (tuning.base_max_error, base_max_edge,
 /// base_max_normal_deviation_degrees) are multiplied by its square, so that at low qualities
 /// the target sets the base's size. From 20 up the video's quantiser is the cheaper lever;

@@ -371,7 +371,8 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "0 (smallest) .. 100 (finest); sets the video quantiser (AV1 CRF = "
                   "63 x (1 - q/100), HEVC QP = 51 x (1 - q/100); FFV1 is lossless) and the "
                   "--rebase-gain; below 20 also a coarser base mesh and motion (half the base's "
-                  "vertices and twice the transform step every 10 steps down)")
+                  "vertices, twice the transform step and 1.41x the motion's node spacing every "
+                  "10 steps down)")
       ->capture_default_str();
   cmd->add_option("--levels", o.levels,
                   "Subdivision levels of the displacement lattice: the finest resolution a "

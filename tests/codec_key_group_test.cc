@@ -305,10 +305,10 @@ TEST(KeyGroups, TheGainAFreshBaseMustBringFollowsTheQuality) {
   EXPECT_DOUBLE_EQ(RebaseGainDb(options), 0.375);
 }
 
-TEST(KeyGroups, BelowQuality20TheBaseCoarsens) {
+TEST(KeyGroups, BelowQuality30TheBaseCoarsens) {
   EXPECT_DOUBLE_EQ(BaseCoarsening(100), 1.0);
-  EXPECT_DOUBLE_EQ(BaseCoarsening(20), 1.0);
-  EXPECT_DOUBLE_EQ(BaseCoarsening(10), 2.0);
+  EXPECT_DOUBLE_EQ(BaseCoarsening(30), 1.0);
+  EXPECT_DOUBLE_EQ(BaseCoarsening(15), 2.0);
   EXPECT_DOUBLE_EQ(BaseCoarsening(0), 4.0);
   // At quality 40 the decimation's bounds stop the spheres' base far above its target;
   // quality 0 aims at a quarter of the target and frees the bounds to reach it. Quality 100
@@ -618,13 +618,13 @@ MotionQuantization StatedSteps(const std::vector<std::uint8_t>& bytes) {
   return StatedMotion(bytes).quantization;
 }
 
-TEST(NodeSpacing, IsTheSettingFromQuality20UpAndCoarsensBelow) {
-  // The spacing the file states is the option's (TestOptions) at 20 and up, 1.41 times it
-  // at 10 and twice it at 0, where the base it moves is 2 and 4 times coarser.
+TEST(NodeSpacing, IsTheSettingFromQuality30UpAndCoarsensBelow) {
+  // The spacing the file states is the option's (TestOptions) at 30 and up, 1.41 times it
+  // at 15 and twice it at 0, where the base it moves is 2 and 4 times coarser.
   const std::vector<TriangleMesh> frames = TwoBodyFrames(3, 0.01f, /*jump_frame=*/1000);
   EncoderOptions options = TestOptions();
   const float given = static_cast<float>(options.tuning.node_spacing);
-  for (const auto& [quality, factor] : {std::pair{100, 1.0}, {20, 1.0}, {10, M_SQRT2}, {0, 2.0}}) {
+  for (const auto& [quality, factor] : {std::pair{100, 1.0}, {30, 1.0}, {15, M_SQRT2}, {0, 2.0}}) {
     options.quality = quality;
     const Encoded encoded = Encode(frames, options);
     const MotionModel motion = StatedMotion(encoded.bytes).model;
@@ -656,9 +656,9 @@ TEST(TransformSteps, FollowTheSizeByDefaultAndTheOptionWhenSet) {
   const MotionQuantization stated = StatedSteps(set.bytes);
   EXPECT_FLOAT_EQ(stated.translation_step, 0.001f);
   EXPECT_FLOAT_EQ(stated.rotation_step, float(0.001 / (corner + scale)));
-  // Below quality 20 the step coarsens: twice as coarse at 10, four times at 0.
+  // Below quality 30 the step coarsens: twice as coarse at 15, four times at 0.
   options.tuning.transform_step = 0;
-  options.quality = 10;
+  options.quality = 15;
   EXPECT_FLOAT_EQ(StatedSteps(Encode(frames, options).bytes).translation_step,
                   float(2 * scale / 8192));
   options.quality = 0;

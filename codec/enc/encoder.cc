@@ -28,13 +28,13 @@ Lengths DeriveLengths(const EncoderOptions& o, float scale) {
   l.outlier_distance = pick(o.tuning.outlier_distance, 0.005);
   l.base_max_error = pick(o.tuning.base_max_error, 0.01);
   l.reacquire_max_distance = pick(o.tuning.reacquire_max_distance, 0.25);
-  // Below quality 20 the nodes thin out with the base, by the square root of its coarsening:
+  // Below quality 30 the nodes thin out with the base, by the square root of its coarsening:
   // at 4% apart a coarse base's node tracks outweigh its base and video, and as coarse as
   // the base a folding sheet is no longer followed (bench/QUALITY.md).
   l.node_spacing =
       static_cast<float>(std::sqrt(BaseCoarsening(o.quality))) * pick(o.tuning.node_spacing, 0.04);
   // Edge bounds for the deformation's nodes (4% apart) to bend the base and find data along
-  // it (at quality 20 and above; below, the base coarsens with its bounds: MakeBaseMesh).
+  // it (at quality 30 and above; below, the base coarsens with its bounds: MakeBaseMesh).
   l.base_max_edge = pick(o.tuning.base_max_edge, 0.03);
   l.proxy_max_edge = pick(o.tuning.proxy_max_edge, 0.04);
   l.farthest_growth =

@@ -18,7 +18,9 @@ double RebaseGainDb(const EncoderOptions& options) {
 }
 
 double BaseCoarsening(int quality) {
-  return std::exp2(std::max(0.0, (20.0 - std::clamp(quality, 0, 100)) / 10.0));
+  // 4 at quality 0, so the coarsest base is the same whatever quality the coarsening starts at.
+  const double below = std::max(0, kFinestBaseQuality - std::clamp(quality, 0, 100));
+  return std::exp2(2.0 * below / kFinestBaseQuality);
 }
 
 int QualityToQp(VideoCodec codec, int quality) {

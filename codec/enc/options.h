@@ -49,14 +49,14 @@ inline constexpr double kNoLimit = 1e300;
   KNOB(double, base_max_error, 0, 0, kNoLimit, "--base-max-error",                             \
        "Largest surface change a decimation step of the base may make, in scene units (0: 1% " \
        "of the size), so that displacements along the base's normals stay one-to-one with "    \
-       "the data. Given at quality 20 and above, x4 every 10 quality steps below.")            \
+       "the data. Given at quality 30 and above, x4 every 15 quality steps below.")            \
   KNOB(double, base_max_normal_deviation_degrees, 30, 0, 180, "--base-max-normal-deviation",   \
        "Largest turn of a face normal a decimation step of the base may make, in degrees. "    \
-       "Given at quality 20 and above, x4 every 10 quality steps below (at most 180).")        \
+       "Given at quality 30 and above, x4 every 15 quality steps below (at most 180).")        \
   KNOB(double, base_max_edge, 0, 0, kNoLimit, "--base-max-edge",                               \
        "Longest edge the base decimation leaves (0: 3% of the size, under the nodes' "         \
        "spacing): quadrics alone collapse a straight tube into slivers that cannot bend with " \
-       "it. Given at quality 20 and above, x4 every 10 quality steps below.")                  \
+       "it. Given at quality 30 and above, x4 every 15 quality steps below.")                  \
   KNOB(int, base_position_bits, 10, 8, 24, "--base-bits",                                      \
        "Draco position quantisation of the base meshes, in bits per coordinate of the "        \
        "bounding box; the displacements correct what it moves along the normals "              \
@@ -65,7 +65,7 @@ inline constexpr double kNoLimit = 1e300;
        "Quantisation step of the motion's translations (0: 1/8192 of the size); the rotation " \
        "step moves no vertex by more, rounded about the origin or, where a key group's track " \
        "codes smaller so, about each segment's centre (bench/TRANSFORMS.md). Given at "        \
-       "quality 20 and above, doubled every 10 quality steps below.")                          \
+       "quality 30 and above, doubled every 15 quality steps below.")                          \
   /* --- correspondence (docs/encoder-method.md section 2) */                                  \
   KNOB(double, proxy_fraction, 0.05, 0.001, 1, "--proxy-fraction",                             \
        "Share of each view's triangles kept in the frame's proxy, the data the tracker fits.") \
@@ -82,7 +82,7 @@ inline constexpr double kNoLimit = 1e300;
        "The tracker's finest correspondence radius is twice this (0: 0.5% of the size).")      \
   KNOB(double, node_spacing, 0, 0, kNoLimit, "--node-spacing",                                 \
        "Distance between the deformation's nodes along the base surface (0: 4% of the "        \
-       "size). Given at quality 20 and above; below, multiplied by 1.41 every 10 steps down.") \
+       "size). Given at quality 30 and above; below, multiplied by 1.41 every 15 steps down.") \
   KNOB(double, deform_rigidity, 0.1, 1e-6, kNoLimit, "--rigidity",                             \
        "Weight of neighbouring nodes agreeing on each other's positions, against the data.")   \
   KNOB(double, deform_coarse_stiffness, 100, 1, 1000, "--coarse-stiffness",                    \
@@ -181,8 +181,8 @@ struct EncoderOptions {
   /// A user base mesh (an animator's control model), rigidly fitted to frame 0. Empty: fuse
   /// frame 0's views and decimate.
   std::optional<TriangleMesh> base_mesh;
-  /// Automatic base: target vertex count after decimation, at quality 20 and above; halved
-  /// every 10 quality steps below (BaseCoarsening).
+  /// Automatic base: target vertex count after decimation, at quality 30 and above; halved
+  /// every 15 quality steps below (BaseCoarsening).
   std::size_t base_vertices = 2000;
   // --- detail
   /// Subdivision levels of the displacement lattice: the finest resolution a decoder can
@@ -227,14 +227,17 @@ inline constexpr int kFinestRebasingQuality = 80;
 /// doubling every 20 steps below and halving every 20 above, up to kFinestRebasingQuality).
 double RebaseGainDb(const EncoderOptions& options);
 
+/// The quality below which the automatic base mesh and the motion coarsen (BaseCoarsening).
+inline constexpr int kFinestBaseQuality = 30;
+
 /// How much coarser than their settings the automatic base mesh (not a user's) and the
-/// motion are made at `quality`: 1 at 20 and above, doubling every 10 quality steps below (4 at
-/// 0). The base's target vertex count is divided by it and the transforms' step
+/// motion are made at `quality`: 1 at kFinestBaseQuality and above, doubling every 15 quality
+/// steps below (4 at 0). The base's target vertex count is divided by it and the transforms' step
 /// (tuning.transform_step) multiplied by it, the deformation's node spacing
 /// (tuning.node_spacing) by its square root;
 /// the base decimation's bounds (tuning.base_max_error, base_max_edge,
 /// base_max_normal_deviation_degrees) are multiplied by its square, so that at low qualities
-/// the target sets the base's size. From 20 up the video's quantiser is the cheaper lever;
+/// the target sets the base's size. From 30 up the video's quantiser is the cheaper lever;
 /// below, it barely moves D1 and the base's resolution does (bench/QUALITY.md).
 double BaseCoarsening(int quality);
 

@@ -370,9 +370,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--quality", o.quality,
                   "0 (smallest) .. 100 (finest); sets the video quantiser (AV1 CRF = "
                   "63 x (1 - q/100), HEVC QP = 51 x (1 - q/100); FFV1 is lossless) and the "
-                  "--rebase-gain; below 20 also a coarser base mesh and motion (half the base's "
+                  "--rebase-gain; below 30 also a coarser base mesh and motion (half the base's "
                   "vertices, twice the transform step and 1.41x the motion's node spacing every "
-                  "10 steps down)")
+                  "15 steps down)")
       ->capture_default_str();
   cmd->add_option("--levels", o.levels,
                   "Subdivision levels of the displacement lattice: the finest resolution a "
@@ -418,9 +418,9 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "Use this mesh (PLY/OBJ) as the base, rigidly fitted to each key group's "
                   "first frame, instead of fusing that frame's views");
   cmd->add_option("--base-vertices", o.base_vertices,
-                  "Vertices of the automatic base mesh after decimation, at quality 20 and "
+                  "Vertices of the automatic base mesh after decimation, at quality 30 and "
                   "above (a target: the decimation's bounds may stop it sooner); halved every "
-                  "10 quality steps below")
+                  "15 quality steps below")
       ->capture_default_str();
   cmd->add_flag("--hide-unseen", o.hide_unseen,
                 "Leave out of the decoded surface the base triangles no view saw in any frame "

@@ -356,12 +356,12 @@ TEST(CliConventionsTest, SimulateSaysWhereTheCamerasLookAndWhenTheSubjectIsSideO
 TEST(CliConventionsTest, AnEncodeHeldToTooFewKeyGroupsSaysWhichFramesItCouldNotExplain) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
-  SimulateArmBlock(dir, 3);
+  SimulateArmBlock(dir, 5);
   const testing::CliRun free_run = testing::RunMeshvid(
       "encode '" + dir.File("cap") + "' -q -o '" + dir.File("free.mvid") + "' --json -", dir);
   ASSERT_EQ(free_run.exit_code, 0) << free_run.err;
   const nlohmann::json free = nlohmann::json::parse(free_run.out);
-  // The arm swings fast from the first frame: the encoder wants a fresh base there.
+  // The arm swings fast over the first frames: the encoder wants a fresh base among them.
   ASSERT_GT(free["key_groups"].size(), 1u) << free_run.out;
   for (const nlohmann::json& group : free["key_groups"]) EXPECT_TRUE(group["held_frames"].empty());
 
@@ -374,7 +374,9 @@ TEST(CliConventionsTest, AnEncodeHeldToTooFewKeyGroupsSaysWhichFramesItCouldNotE
   ASSERT_EQ(held["key_groups"].size(), 1u);
   const nlohmann::json& frames = held["key_groups"][0]["held_frames"];
   ASSERT_FALSE(frames.empty());
-  EXPECT_EQ(frames[0]["frame"], free["key_groups"][1]["first_frame"]);
+  // Held to one base the displacements reach farther (detail_max_distance), so the first frame
+  // the base does not explain is no earlier than where the free encode started a new one.
+  EXPECT_GE(frames[0]["frame"].get<int>(), free["key_groups"][1]["first_frame"].get<int>());
   EXPECT_GT(frames[0]["loss_db"].get<double>(), 0);
   EXPECT_NE(held_run.err.find("warning       --max-key-groups 1: key group 0 keeps "),
             std::string::npos)

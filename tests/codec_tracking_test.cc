@@ -140,6 +140,30 @@ float SwingAngle(int frame) {
   return float(tenths) * 10 * kPi / 180;
 }
 
+/// The number of pieces the edges of `graph` join its nodes into; every edge must be held both
+/// ways.
+int GraphPieces(const DeformationGraph& graph) {
+  std::vector<char> reached(graph.node_count(), 0);
+  int pieces = 0;
+  for (std::size_t start = 0; start < graph.node_count(); ++start) {
+    if (reached[start]) continue;
+    ++pieces;
+    std::vector<std::size_t> queue{start};
+    reached[start] = 1;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      for (std::int32_t k : graph.adjacent[queue[head]]) {
+        const auto& back = graph.adjacent[k];
+        EXPECT_TRUE(std::binary_search(back.begin(), back.end(), queue[head]));
+        if (!reached[k]) {
+          reached[k] = 1;
+          queue.push_back(k);
+        }
+      }
+    }
+  }
+  return pieces;
+}
+
 TEST(DeformationGraph, CoversEveryVertexWithNearNodesHeldTogether) {
   const TriangleMesh sphere = testing::LatLongSphere(16, 32);  // radius 1
   const BaseTopology topology(sphere);
@@ -166,20 +190,37 @@ TEST(DeformationGraph, CoversEveryVertexWithNearNodesHeldTogether) {
     }
   }
   // Neighbours both ways, and one connected graph over the one connected surface.
-  std::vector<char> reached(nodes, 0);
-  std::vector<std::int32_t> queue{0};
-  reached[0] = 1;
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    for (std::int32_t k : graph.adjacent[queue[head]]) {
-      const auto& back = graph.adjacent[k];
-      EXPECT_TRUE(std::binary_search(back.begin(), back.end(), queue[head]));
-      if (!reached[k]) {
-        reached[k] = 1;
-        queue.push_back(k);
-      }
+  EXPECT_EQ(GraphPieces(graph), 1);
+}
+
+// Two spheres 0.3 apart: their nodes form two pieces, which a join distance above the gap holds
+// together by new edges no longer than it, and one below it leaves apart.
+TEST(DeformationGraph, JoinsSeparatePiecesWithinTheJoinDistance) {
+  TriangleMesh mesh = testing::LatLongSphere(16, 32);  // radius 1
+  AppendMesh(Ellipsoid(16, Eigen::Vector3f::Ones(), Eigen::Vector3f(2.3f, 0, 0)), &mesh);
+  const BaseTopology topology(mesh);
+  const float spacing = 0.4f;
+  auto build = [&](float join_distance) {
+    StatusOr<DeformationGraph> built = BuildDeformationGraph(topology, spacing, join_distance);
+    EXPECT_TRUE(built.ok()) << built.status().ToString();
+    return built.ok() ? *std::move(built) : DeformationGraph{};
+  };
+  const DeformationGraph apart = build(0);
+  ASSERT_GT(apart.node_count(), 0u);
+  EXPECT_EQ(GraphPieces(apart), 2);
+  EXPECT_EQ(GraphPieces(build(0.25f)), 2);
+  const DeformationGraph joined = build(0.6f);
+  ASSERT_EQ(joined.node_count(), apart.node_count());
+  EXPECT_EQ(GraphPieces(joined), 1);
+  for (std::size_t a = 0; a < joined.node_count(); ++a) {
+    for (std::int32_t b : joined.adjacent[a]) {
+      const auto& before = apart.adjacent[a];
+      if (std::binary_search(before.begin(), before.end(), b)) continue;
+      const Eigen::Vector3f& pa = mesh.positions[joined.motion.node_vertices[a]];
+      const Eigen::Vector3f& pb = mesh.positions[joined.motion.node_vertices[b]];
+      EXPECT_LE((pa - pb).norm(), 0.6f + 1e-5f) << a << " " << b;
     }
   }
-  EXPECT_EQ(queue.size(), nodes);
 }
 
 // A key group tracked two bodies into the frame that ended it: the left one rose 0.1 from the

@@ -141,7 +141,9 @@ std::string TuningTableMarkdown() {
       "|---|---|---|---|---|\n";
   for (const TuningKnob& knob : kKnobs) {
     table += std::string("| `") + knob.key + "` | " + TuningValue(defaults, knob.key) + " | " +
-             TuningRangeText(knob) + " | `" + knob.former_flag + "` | " + knob.help + " |\n";
+             TuningRangeText(knob) + " | " +
+             (*knob.former_flag != '\0' ? std::string("`") + knob.former_flag + "`" : "none") +
+             " | " + knob.help + " |\n";
   }
   return table;
 }

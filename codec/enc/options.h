@@ -96,6 +96,11 @@ inline constexpr double kNoLimit = 1e300;
        "Neighbouring nodes are joined into rigid groups while one rigid transform per frame "  \
        "stays within this many tolerances of each node's own, and carry the group's "          \
        "transform (rigid_node_groups.h; 0: each node keeps its own).")                         \
+  KNOB(double, deform_join_pieces, 1.5, 0, 10, "",                                             \
+       "Nodes on separate pieces of the base (a fusion leaves a hand apart from the block it " \
+       "holds) are held to the nearest node of another piece within this many node "           \
+       "spacings, so that a small piece moves with what it touches rather than onto "          \
+       "whatever data lies near (0: pieces move apart; bench/DEFORM.md).")                     \
   KNOB(int, deform_iterations, 3, 1, 100, "--deform-iterations",                               \
        "Gauss-Newton steps per correspondence radius.")                                        \
   KNOB(int, deform_first_iterations, 10, 1, 100, "--deform-first-iterations",                  \
@@ -150,7 +155,7 @@ struct TuningKnob {
   const char* type;  ///< "int", "double", "size" or "bool"
   double default_value;
   double lowest, highest;   ///< its range, both included (highest kNoLimit: none)
-  const char* former_flag;  ///< the flag `meshvid encode` took before `--tune`
+  const char* former_flag;  ///< the flag `meshvid encode` took before `--tune` ("": none)
   const char* help;
 };
 

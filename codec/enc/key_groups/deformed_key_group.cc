@@ -262,8 +262,11 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   const EncoderOptions& options = ctx.options;
   const TriangleMesh& base = analysis->base;
   KeyGroupSummary& summary = analysis->summary;
-  MESHVID_ASSIGN_OR_RETURN(const DeformationGraph graph,
-                           BuildDeformationGraph(topology, ctx.lengths.node_spacing));
+  MESHVID_ASSIGN_OR_RETURN(
+      const DeformationGraph graph,
+      BuildDeformationGraph(
+          topology, ctx.lengths.node_spacing,
+          static_cast<float>(options.tuning.deform_join_pieces * ctx.lengths.node_spacing)));
   analysis->motion = graph.motion;
   const int nodes = static_cast<int>(graph.node_count());
   summary.segments = nodes;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -19,6 +20,58 @@
 
 namespace meshvid {
 namespace {
+
+/// Per node, the number of its piece: nodes joined through `adjacent` share one.
+std::vector<int> NodePieces(const std::vector<std::vector<std::int32_t>>& adjacent) {
+  std::vector<int> piece(adjacent.size(), -1);
+  int pieces = 0;
+  std::vector<std::size_t> stack;
+  for (std::size_t start = 0; start < adjacent.size(); ++start) {
+    if (piece[start] >= 0) continue;
+    piece[start] = pieces;
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      const std::size_t a = stack.back();
+      stack.pop_back();
+      for (std::int32_t b : adjacent[a]) {
+        if (piece[b] < 0) {
+          piece[b] = pieces;
+          stack.push_back(b);
+        }
+      }
+    }
+    ++pieces;
+  }
+  return piece;
+}
+
+/// Holds every node to the nearest node of another piece within `reach` (among its
+/// kJoinCandidates nearest nodes), both ways.
+void JoinSeparatePieces(std::span<const Eigen::Vector3f> node_positions, float reach,
+                        std::vector<std::vector<std::int32_t>>* adjacent) {
+  constexpr std::size_t kJoinCandidates = 16;
+  const std::vector<int> piece = NodePieces(*adjacent);
+  const PointCloud cloud{node_positions};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  const float reach_squared = reach * reach;
+  std::vector<std::pair<std::int32_t, std::int32_t>> joins;
+  for (std::size_t a = 0; a < node_positions.size(); ++a) {
+    std::array<std::uint32_t, kJoinCandidates> nearest;
+    std::array<float, kJoinCandidates> squared;
+    const std::size_t found =
+        tree.knnSearch(node_positions[a].data(), kJoinCandidates, nearest.data(), squared.data());
+    for (std::size_t k = 0; k < found && squared[k] <= reach_squared; ++k) {
+      if (piece[nearest[k]] != piece[a]) {
+        joins.emplace_back(static_cast<std::int32_t>(a), static_cast<std::int32_t>(nearest[k]));
+        break;
+      }
+    }
+  }
+  for (const auto& [a, b] : joins) {
+    (*adjacent)[a].push_back(b);
+    (*adjacent)[b].push_back(a);
+  }
+}
 
 Eigen::Matrix3d Skew(const Eigen::Vector3d& a) {
   Eigen::Matrix3d m;
@@ -426,7 +479,8 @@ class FrameSolver {
 
 }  // namespace
 
-StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing) {
+StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing,
+                                                 float join_distance) {
   DeformationGraph graph;
   MESHVID_ASSIGN_OR_RETURN(graph.motion,
                            SampleNodeMotion(base.mesh, base.neighbours, node_spacing));
@@ -450,6 +504,12 @@ StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float
       const std::uint32_t nearest_w = motion.blends[w].influences[0].segment;
       if (nearest_v != nearest_w) graph.adjacent[nearest_v].push_back(nearest_w);
     }
+  }
+  if (join_distance > 0) {
+    std::vector<Eigen::Vector3f> node_positions;
+    node_positions.reserve(graph.node_count());
+    for (std::uint32_t v : motion.node_vertices) node_positions.push_back(base.mesh.positions[v]);
+    JoinSeparatePieces(node_positions, join_distance, &graph.adjacent);
   }
   for (auto& list : graph.adjacent) {
     std::sort(list.begin(), list.end());

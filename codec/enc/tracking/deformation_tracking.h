@@ -38,8 +38,12 @@ struct DeformationGraph {
 /// Samples nodes over `base` about `node_spacing` apart along its edges and blends every
 /// vertex over its nearest nodes (codec/common/deformation_graph.h: the motion model a file
 /// stores as nodes), and joins nodes that blend a vertex together or are nearest to the two
-/// ends of an edge.
-StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing);
+/// ends of an edge. With `join_distance` > 0, every node is also joined to the nearest node
+/// within that distance of a piece the surface does not connect it to: a fusion leaves a hand
+/// apart from the block it holds, and a small piece held to nothing drifts onto whatever data
+/// lies near (0: pieces move apart).
+StatusOr<DeformationGraph> BuildDeformationGraph(const BaseTopology& base, float node_spacing,
+                                                 float join_distance = 0);
 
 /// A frame's data points as the tracker searches them.
 struct TrackingData {

@@ -13,6 +13,7 @@
 #include "codec/dec/motion_decoder.h"
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/encoder.h"
+#include "codec/enc/key_groups/key_group_rules.h"
 #include "codec/enc/tracking/data_fit.h"
 #include "format/container_reader.h"
 #include "tests/analytic_mvid.h"
@@ -244,6 +245,85 @@ TEST(DataFit, SliversReachAcrossTheirLength) {
   // Beyond the strip's side or its end, and too far along the normal, still unexplained.
   const std::vector<Eigen::Vector3f> off = {{2.5f, 0.6f, 0}, {4.7f, 0.2f, 0}, {2.5f, 0.2f, 0.02f}};
   EXPECT_EQ(MeasureDataFit(samples, off, 0.01f, 1.0f, normals, reach).unexplained_share, 1);
+}
+
+TEST(DataFit, SurfaceAFreshBaseWouldLoseCountsAgainstIt) {
+  const double range = 0.01;
+  DataFit key;
+  key.points = 1000;
+  // 1% of the surface seen through: 3 dB at the data alone.
+  DataFit tracked = key;
+  tracked.seen_through_share = 0.01;
+  ForgottenSurface forgotten;
+  forgotten.share = 0.02;
+  forgotten.mean_square = 4 * range * range;  // two ranges off where the fresh base lacks it
+  // Tracked: 0.98 x 2e-6 + 0.02 x 1e-6; fresh: 0.98 x 1e-6 + 0.02 x 4e-4. The fresh base
+  // loses more than the tracked one: no loss.
+  EXPECT_NEAR(TrackingLossDb(key, tracked, range), 10 * std::log10(2.0), 1e-9);
+  EXPECT_EQ(TrackingLossDb(key, tracked, range, forgotten), 0);
+  EXPECT_FALSE(StillExplains(key, tracked, range, 2, 1));
+  EXPECT_TRUE(StillExplains(key, tracked, range, 2, 1, forgotten, 4));
+  // It may offset only so much of the loss at the data.
+  EXPECT_FALSE(StillExplains(key, tracked, range, 2, 1, forgotten, 0.5));
+  // A smaller share at a smaller distance offsets part of it.
+  ForgottenSurface little;
+  little.share = 0.001;
+  little.mean_square = 1.5 * 1.5 * range * range;
+  const double offset = TrackingLossDb(key, tracked, range, little);
+  EXPECT_GT(offset, 0);
+  EXPECT_LT(offset, 10 * std::log10(2.0));
+}
+
+// A frame source with no frames: MeasureForgottenSurface reads only the context's settings.
+class NoFrames : public FrameSource {
+ public:
+  int frame_count() const override { return 0; }
+  int view_count() const override { return 1; }
+  double frame_rate() const override { return 25; }
+  StatusOr<std::vector<TriangleMesh>> LoadFrame(int) const override {
+    return NotFoundError("no frames");
+  }
+};
+
+TEST(KeyGroups, AFreshBaseOfAFrameSeeingHalfTheSurfaceLosesTheOtherHalf) {
+  const TriangleMesh base = testing::LatLongSphere(24, 48);
+  const MotionModel motion = SingleSegmentModel(base.vertex_count());
+  const std::vector<RigidTransform> track(1);
+  // The frame's fused surface: the upper half of the sphere.
+  std::vector<Eigen::Vector3f> upper;
+  for (const Eigen::Vector3f& p : base.positions) {
+    if (p.y() >= 0) upper.push_back(p);
+  }
+  const NoFrames source;
+  EncoderOptions options;
+  const ProgressCallback progress;
+  EncodeContext ctx{source, options, progress, {}, {}, 0, {}};
+  ctx.lengths.detail_max_distance = 0.05f;
+  options.tuning.rebase_forgotten_reach = 4;
+  const std::vector<char> all_seen(base.vertex_count(), 1);
+  // Cameras that saw through nothing: every lost vertex counts.
+  const SeenFreeSpace saw_nothing_through({}, {});
+  const ForgottenSurface lost =
+      MeasureForgottenSurface(ctx, base, motion, track, all_seen, upper, &saw_nothing_through);
+  std::size_t below = 0;
+  for (const Eigen::Vector3f& p : base.positions) below += p.y() < -0.05f;
+  // Every vertex more than a range below the equator is lost (those just below are within
+  // the range of the upper half's rim), each at most 4 ranges (0.2) off.
+  EXPECT_NEAR(lost.share, double(below) / base.vertex_count(), 0.06);
+  EXPECT_GT(lost.mean_square, 0.5 * 0.2 * 0.2);
+  EXPECT_LE(lost.mean_square, 0.2 * 0.2 + 1e-6);
+  // Surface the key group never saw is not counted; nor anything without cameras (nothing
+  // tells lost surface from surface the subject left) or when the knob is 0.
+  const std::vector<char> none_seen(base.vertex_count(), 0);
+  EXPECT_EQ(
+      MeasureForgottenSurface(ctx, base, motion, track, none_seen, upper, &saw_nothing_through)
+          .share,
+      0);
+  EXPECT_EQ(MeasureForgottenSurface(ctx, base, motion, track, all_seen, upper, nullptr).share, 0);
+  options.tuning.rebase_forgotten_reach = 0;
+  EXPECT_EQ(MeasureForgottenSurface(ctx, base, motion, track, all_seen, upper, &saw_nothing_through)
+                .share,
+            0);
 }
 
 TEST(KeyGroups, AJumpStartsANewKeyGroupExactlyThere) {

@@ -28,7 +28,7 @@ TEST(TuningKnobs, EveryKnobHasAUniqueKeyAFormerFlagAndADefaultInItsRange) {
     EXPECT_FALSE(std::string(knob.help).empty()) << knob.key;
     EXPECT_FALSE(TuningValue(defaults, knob.key).empty()) << knob.key;
   }
-  EXPECT_EQ(keys.size(), 34u);
+  EXPECT_EQ(keys.size(), 36u);
   EXPECT_TRUE(CheckOptions(EncoderOptions()).ok());
 }
 

@@ -132,6 +132,17 @@ inline constexpr double kNoLimit = 1e300;
        "A new key group starts where some part of the tracked surface lies farther from "      \
        "every data point than at the key frame by more than this, in scene units: a piece "    \
        "the motion threw where no view contradicts it (0: max_distance).")                     \
+  KNOB(double, rebase_forgotten_reach, 4, 0, 100, "",                                          \
+       "A fresh base holds only what its own frame's views see. Where a tracked frame's data " \
+       "alone would end its key group, the surface the key group saw at earlier frames that "  \
+       "lies beyond the displacement range of the frame's fused surface, where no camera saw " \
+       "through it (captures with cameras only), counts against the fresh base at its "        \
+       "distance from that surface, up to this many displacement ranges (0: the decision "     \
+       "weighs the frame's data alone; bench/KEYGROUPS.md).")                                  \
+  KNOB(double, rebase_forgotten_excuse_db, 4, 0, 100, "",                                      \
+       "Most of a tracked frame's estimated loss at its data, in dB beyond the re-basing "     \
+       "gain, that the surface a fresh base would lose may offset: a tracker gone astray "     \
+       "also leaves surface away from the data, and past this the key group ends.")            \
   KNOB(double, detail_max_distance, 0, 0, kNoLimit, "--detail-distance",                       \
        "Farthest hit along a sample normal, and the displacement range a key group must keep " \
        "its frames' data within (0: 0.5% of the size; 2% with max_key_groups 1).")             \

@@ -90,6 +90,10 @@ class KeyGroupTracking {
   /// What frame t is tracked to: the frame fused (closed where no view saw it, as a key
   /// frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
   StatusOr<TrackingData> DataOf(int t);
+  /// What a fresh base fused from frame `t` would lose of the key group's surface posed by
+  /// `track` (MeasureForgottenSurface against the frame's fused surface, or its proxy's
+  /// points when frames are not fused for tracking).
+  ForgottenSurface Forgotten(int t, std::span<const RigidTransform> track) const;
 
   /// The first frame from the key frame, `t`, which has no velocity of its own to predict
   /// from; `stiff` is its stiff solve. Solved stiff at first, a fast part moves as a whole; at
@@ -122,6 +126,16 @@ class KeyGroupTracking {
   DataFit key_fit_;
   std::vector<char> observed_;
 };
+
+ForgottenSurface KeyGroupTracking::Forgotten(int t, std::span<const RigidTransform> track) const {
+  const auto fused = fused_frames_.find(t);
+  const FrameProxy& proxy = proxies_.at(t);
+  const std::span<const Eigen::Vector3f> surface =
+      fused != fused_frames_.end() ? std::span<const Eigen::Vector3f>(fused->second.positions)
+                                   : std::span<const Eigen::Vector3f>(proxy.points);
+  return MeasureForgottenSurface(ctx_, analysis_.base, analysis_.motion, track, observed_, surface,
+                                 proxy.free_space.get());
+}
 
 StatusOr<TrackingData> KeyGroupTracking::DataOf(int t) {
   const bool track_fused = ctx_.options.tuning.deform_track_fused;
@@ -235,15 +249,20 @@ StatusOr<bool> KeyGroupTracking::TrackRun(int direction, int last,
       MESHVID_RETURN_IF_ERROR(FirstStep(t, direction, data, &next, &next_stats, &looked_ahead,
                                         &looked_ahead_reacquired));
     }
+    const DataFit fit = meter_.Measure(next, proxy);
+    // The surface a fresh base would lose is measured only where the data alone would end the
+    // key group: it can only keep a frame.
+    const ForgottenSurface forgotten =
+        TrackedFrameExplained(ctx_, key_fit_, fit) ? ForgottenSurface{} : Forgotten(t, next);
     if (may_cut_) {
-      if (!KeepTrackedFrame(ctx_, key_fit_, meter_.Measure(next, proxy), &summary)) {
+      if (!KeepTrackedFrame(ctx_, key_fit_, fit, forgotten, &summary)) {
         if (direction > 0) {
           analysis_.hint = HintOf(t, analysis_.base, analysis_.motion, previous, next);
         }
         return true;
       }
     } else {
-      RecordHeldFrame(ctx_, key_fit_, meter_.Measure(next, proxy), t, &summary);
+      RecordHeldFrame(ctx_, key_fit_, fit, forgotten, t, &summary);
     }
     if (proxy.target) {
       ObserveVertices(ctx_, analysis_.base, analysis_.motion, *proxy.target, next, &observed_);

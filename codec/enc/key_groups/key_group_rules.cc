@@ -7,19 +7,22 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "codec/common/point_tree.h"
 #include "codec/enc/fusion/surface_fusion.h"
 
 namespace meshvid {
 
-bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit) {
+bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                           const ForgottenSurface& forgotten) {
   return StillExplains(key_fit, fit, ctx.lengths.detail_max_distance, RebaseGainDb(ctx.options),
-                       ctx.lengths.farthest_growth);
+                       ctx.lengths.farthest_growth, forgotten,
+                       ctx.options.tuning.rebase_forgotten_excuse_db);
 }
 
 bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-                      KeyGroupSummary* summary) {
-  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
-  if (!TrackedFrameExplained(ctx, key_fit, fit)) {
+                      const ForgottenSurface& forgotten, KeyGroupSummary* summary) {
+  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance, forgotten);
+  if (!TrackedFrameExplained(ctx, key_fit, fit, forgotten)) {
     summary->cut_loss_db = loss_db;
     summary->cut_unexplained = fit.unexplained_share;
     summary->cut_seen_through = fit.seen_through_share;
@@ -32,13 +35,65 @@ bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const Da
 }
 
 void RecordHeldFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-                     int frame, KeyGroupSummary* summary) {
-  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance);
+                     const ForgottenSurface& forgotten, int frame, KeyGroupSummary* summary) {
+  const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance, forgotten);
   summary->worst_unexplained = std::max(summary->worst_unexplained, fit.unexplained_share);
   summary->worst_loss_db = std::max(summary->worst_loss_db, loss_db);
-  if (!TrackedFrameExplained(ctx, key_fit, fit)) {
+  if (!TrackedFrameExplained(ctx, key_fit, fit, forgotten)) {
     summary->held_frames.push_back({frame, loss_db, fit.unexplained_share, fit.seen_through_share});
   }
+}
+
+ForgottenSurface MeasureForgottenSurface(const EncodeContext& ctx, const TriangleMesh& base,
+                                         const MotionModel& motion,
+                                         std::span<const RigidTransform> track,
+                                         const std::vector<char>& observed,
+                                         std::span<const Eigen::Vector3f> frame_surface,
+                                         const SeenFreeSpace* free_space) {
+  const double range = ctx.lengths.detail_max_distance;
+  const double cap = ctx.options.tuning.rebase_forgotten_reach * range;
+  // Without cameras nothing tells surface the views lost from surface the subject left (a
+  // teleported block's old place): no surface counts as lost.
+  if (cap <= 0 || frame_surface.empty() || free_space == nullptr) return {};
+  std::vector<Eigen::Vector3f> posed, normals;
+  PoseVertices(motion, track, base.positions, &posed);
+  ComputeVertexNormals(posed, base.triangles, &normals);
+  const PointCloud cloud{frame_surface};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kPointTreeLeafSize));
+  struct Sums {
+    std::size_t observed = 0, forgotten = 0;
+    double squares = 0;
+  };
+  // Deterministic: the sums feed the key-group decision, which must not depend on the threads.
+  const Sums sums = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<std::size_t>(0, posed.size(), 1024), Sums{},
+      [&](const tbb::blocked_range<std::size_t>& vertices, Sums partial) {
+        for (std::size_t v = vertices.begin(); v != vertices.end(); ++v) {
+          if (v >= observed.size() || !observed[v]) continue;
+          ++partial.observed;
+          std::uint32_t nearest = 0;
+          float squared = 0;
+          tree.knnSearch(posed[v].data(), 1, &nearest, &squared);
+          const double distance = std::sqrt(double(squared));
+          if (distance <= range) continue;
+          if (free_space &&
+              free_space->Judge(posed[v], normals[v], float(range),
+                                /*across_too=*/true) == SeenFreeSpace::Verdict::kSeenThrough) {
+            continue;
+          }
+          ++partial.forgotten;
+          partial.squares += std::min(distance, cap) * std::min(distance, cap);
+        }
+        return partial;
+      },
+      [](Sums a, const Sums& b) {
+        a.observed += b.observed;
+        a.forgotten += b.forgotten;
+        a.squares += b.squares;
+        return a;
+      });
+  if (sums.observed == 0 || sums.forgotten == 0) return {};
+  return {double(sums.forgotten) / double(sums.observed), sums.squares / double(sums.forgotten)};
 }
 
 void ClearCut(KeyGroupSummary* summary) {

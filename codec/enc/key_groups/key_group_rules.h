@@ -22,20 +22,36 @@
 namespace meshvid {
 
 /// Whether a tracked frame stays in its key group: a fresh base would not gain the D1 its
-/// bytes are worth at the quality (StillExplains with RebaseGainDb and the farthest growth).
-bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit);
+/// bytes are worth at the quality (StillExplains with RebaseGainDb, the farthest growth, and
+/// the surface a fresh base would lose, `forgotten`, within rebase_forgotten_excuse_db).
+bool TrackedFrameExplained(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
+                           const ForgottenSurface& forgotten = {});
 
 /// TrackedFrameExplained, with its figures recorded in `summary`: for a frame that stays,
 /// the key group's worst unexplained share and estimated loss (TrackingLossDb) so far; for
 /// one that does not, what ended the key group (the cut_* figures, against `key_fit`).
 bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-                      KeyGroupSummary* summary);
+                      const ForgottenSurface& forgotten, KeyGroupSummary* summary);
 
 /// For a key group that may not be cut (max_key_groups): records frame `frame` in
 /// summary->held_frames where KeepTrackedFrame would have ended the key group, and the key
 /// group's worst figures either way.
 void RecordHeldFrame(const EncodeContext& ctx, const DataFit& key_fit, const DataFit& fit,
-                     int frame, KeyGroupSummary* summary);
+                     const ForgottenSurface& forgotten, int frame, KeyGroupSummary* summary);
+
+/// The surface a fresh base fused from a frame would lose (ForgottenSurface): the base
+/// vertices `observed` at earlier frames of the key group, posed by `track`, that lie beyond
+/// the displacement range of `frame_surface` (the frame's fused surface, as points) where
+/// `free_space` does not say a camera saw through them; distances capped at
+/// rebase_forgotten_reach displacement ranges. Empty when that knob is 0 or without cameras
+/// (`free_space` null): then nothing tells surface the views lost from surface the subject
+/// left.
+ForgottenSurface MeasureForgottenSurface(const EncodeContext& ctx, const TriangleMesh& base,
+                                         const MotionModel& motion,
+                                         std::span<const RigidTransform> track,
+                                         const std::vector<char>& observed,
+                                         std::span<const Eigen::Vector3f> frame_surface,
+                                         const SeenFreeSpace* free_space);
 
 /// Clears them (-1): no frame has ended the key group.
 void ClearCut(KeyGroupSummary* summary);

@@ -148,21 +148,28 @@ double DecodedMeanSquare(const DataFit& fit, double representable_distance) {
   return floor + fit.excess_mean_square + fit.seen_through_share * range_squared;
 }
 
-double TrackingLossDb(const DataFit& key_frame, const DataFit& frame,
-                      double representable_distance) {
+double TrackingLossDb(const DataFit& key_frame, const DataFit& frame, double representable_distance,
+                      const ForgottenSurface& forgotten) {
   if (frame.points == 0) return 0;
-  const double tracked = DecodedMeanSquare(frame, representable_distance);
-  const double fresh = DecodedMeanSquare(key_frame, representable_distance);
+  const double floor =
+      kDecodedErrorFloor * kDecodedErrorFloor * representable_distance * representable_distance;
+  const double lost = std::clamp(forgotten.share, 0.0, 1.0);
+  const double tracked =
+      (1 - lost) * DecodedMeanSquare(frame, representable_distance) + lost * floor;
+  const double fresh = (1 - lost) * DecodedMeanSquare(key_frame, representable_distance) +
+                       lost * forgotten.mean_square;
   if (!std::isfinite(tracked)) return std::numeric_limits<double>::infinity();
   if (!std::isfinite(fresh) || tracked <= fresh) return 0;
   return 10 * std::log10(tracked / fresh);
 }
 
-bool StillExplains(const DataFit& key_frame, const DataFit& frame,
-                   double representable_distance, double allowed_loss_db,
-                   double farthest_growth) {
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double representable_distance,
+                   double allowed_loss_db, double farthest_growth,
+                   const ForgottenSurface& forgotten, double most_excused_db) {
   if (frame.points == 0) return true;
-  return TrackingLossDb(key_frame, frame, representable_distance) <= allowed_loss_db &&
+  const double at_data = TrackingLossDb(key_frame, frame, representable_distance);
+  return TrackingLossDb(key_frame, frame, representable_distance, forgotten) <= allowed_loss_db &&
+         at_data <= allowed_loss_db + most_excused_db &&
          frame.farthest_from_data <= key_frame.farthest_from_data + farthest_growth;
 }
 

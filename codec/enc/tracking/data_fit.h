@@ -73,22 +73,38 @@ inline constexpr double kDecodedErrorFloor = 0.1;
 /// through (each such sample at least one range off), and the floor (kDecodedErrorFloor).
 double DecodedMeanSquare(const DataFit& fit, double representable_distance);
 
+/// Surface a fresh base fused from one frame would lose: what the key group's tracked base
+/// holds from earlier frames and the frame's own views do not show, lying away from the
+/// frame's fused surface where no camera saw through it.
+struct ForgottenSurface {
+  /// Share of the key group's observed base vertices, posed at the frame, lying farther than
+  /// the displacement range from the frame's fused surface and not in seen free space.
+  double share = 0;
+  /// Mean square of their distances to the fused surface (each capped), in scene units
+  /// squared: a fresh base's error there if the tracked surface is where the subject is.
+  double mean_square = 0;
+};
+
 /// The estimated D1 loss, in dB, of coding a frame with the key group's tracked base (`frame`,
 /// its fit) rather than with a fresh base fused from the frame itself, which is estimated to
 /// fit its frame as the key frame's base fits the key frame (`key_frame`): 10 log10 of the
-/// ratio of their DecodedMeanSquare. 0 for a frame without data (nothing contradicts the
-/// motion); never negative.
-double TrackingLossDb(const DataFit& key_frame, const DataFit& frame,
-                      double representable_distance);
+/// ratio of their DecodedMeanSquare. With `forgotten`, that share of the surface is weighed
+/// apart: the fresh base errs there by its mean square and the tracked base by the floor
+/// (kDecodedErrorFloor). 0 for a frame without data (nothing contradicts the motion); never
+/// negative.
+double TrackingLossDb(const DataFit& key_frame, const DataFit& frame, double representable_distance,
+                      const ForgottenSurface& forgotten = {});
 
 /// Whether a tracked frame stays in its key group: its estimated loss against a fresh base
 /// (TrackingLossDb) is at most `allowed_loss_db`, the D1 a fresh base would have to gain to be
 /// worth its bytes; and no part of the surface is farther from the data than the key frame's
 /// farthest plus `farthest_growth` (a patch the motion threw away, however small, which the
-/// sample-based estimate does not see). A frame without data stays.
-bool StillExplains(const DataFit& key_frame, const DataFit& frame,
-                   double representable_distance, double allowed_loss_db,
-                   double farthest_growth);
+/// sample-based estimate does not see). The surface a fresh base would lose (`forgotten`)
+/// enters the loss, but may offset at most `most_excused_db` of the loss at the data alone
+/// beyond `allowed_loss_db`. A frame without data stays.
+bool StillExplains(const DataFit& key_frame, const DataFit& frame, double representable_distance,
+                   double allowed_loss_db, double farthest_growth,
+                   const ForgottenSurface& forgotten = {}, double most_excused_db = 0);
 
 }  // namespace meshvid
 

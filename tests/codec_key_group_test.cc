@@ -326,6 +326,33 @@ TEST(KeyGroups, AFreshBaseOfAFrameSeeingHalfTheSurfaceLosesTheOtherHalf) {
             0);
 }
 
+TEST(KeyGroups, AFrameLostSurfaceMayNotExcuseEndsTheKeyGroupWithItsLossAtTheData) {
+  const NoFrames source;
+  EncoderOptions options;  // a 2 dB gain at quality 40, offset by at most 4 dB
+  const ProgressCallback progress;
+  EncodeContext ctx{source, options, progress, {}, {}, 0, {}};
+  ctx.lengths.detail_max_distance = 0.01f;
+  ctx.lengths.farthest_growth = 1;
+  DataFit key;
+  key.points = 1000;
+  DataFit tracked = key;
+  tracked.seen_through_share = 0.05;  // 6 x the key frame's error: 7.8 dB at the data
+  ForgottenSurface forgotten;
+  forgotten.share = 0.05;
+  forgotten.mean_square = 16e-4;  // four ranges off
+  const double at_data = TrackingLossDb(key, tracked, 0.01);
+  EXPECT_NEAR(at_data, 10 * std::log10(6.0), 1e-3);
+  EXPECT_EQ(TrackingLossDb(key, tracked, 0.01, forgotten), 0);
+  KeyGroupSummary summary;
+  EXPECT_FALSE(KeepTrackedFrame(ctx, key, tracked, forgotten, &summary));
+  EXPECT_NEAR(summary.cut_loss_db, at_data, 1e-9);
+  // Allowed to offset more, the lost surface keeps the frame.
+  options.tuning.rebase_forgotten_excuse_db = 6;
+  KeyGroupSummary kept;
+  EXPECT_TRUE(KeepTrackedFrame(ctx, key, tracked, forgotten, &kept));
+  EXPECT_EQ(kept.worst_loss_db, 0);
+}
+
 TEST(KeyGroups, AJumpStartsANewKeyGroupExactlyThere) {
   const std::vector<TriangleMesh> frames = TwoBodyFrames(10, 0.01f, 6);
   const Encoded encoded = Encode(frames, TestOptions());

@@ -52,7 +52,9 @@ struct KeyGroupSummary {
   /// (TrackingLossDb): what the key group saved bases for.
   double worst_loss_db = 0;
   /// At the frame that ended the key group (the next key frame), the estimated D1 a fresh base
-  /// gains there (dB), or -1 when the capture (or max_key_groups) ended it.
+  /// gains there (dB; TrackingLossDb with the surface it would lose), or where that stayed
+  /// within the gain, the loss at the data alone, which the lost surface may offset only so
+  /// far (rebase_forgotten_excuse_db); -1 when the capture (or max_key_groups) ended it.
   double cut_loss_db = -1;
   /// At that frame, the share of its points beyond the displacements' reach, or -1 as above.
   double cut_unexplained = -1;

@@ -23,7 +23,11 @@ bool KeepTrackedFrame(const EncodeContext& ctx, const DataFit& key_fit, const Da
                       const ForgottenSurface& forgotten, KeyGroupSummary* summary) {
   const double loss_db = TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance, forgotten);
   if (!TrackedFrameExplained(ctx, key_fit, fit, forgotten)) {
-    summary->cut_loss_db = loss_db;
+    // Where the lost surface offset the loss within the gain, the loss at the data past the
+    // offset's limit ended the key group (or the farthest growth, recorded beside it).
+    summary->cut_loss_db = loss_db <= RebaseGainDb(ctx.options)
+                               ? TrackingLossDb(key_fit, fit, ctx.lengths.detail_max_distance)
+                               : loss_db;
     summary->cut_unexplained = fit.unexplained_share;
     summary->cut_seen_through = fit.seen_through_share;
     summary->cut_farthest_growth = fit.farthest_from_data - key_fit.farthest_from_data;

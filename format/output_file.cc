@@ -33,6 +33,16 @@ StatusOr<std::unique_ptr<OutputFile>> OutputFile::Open(const std::string& path) 
   if (fs::is_directory(path, error)) {
     return InvalidArgumentError(path + ": is a folder; give a file name");
   }
+  // A device or a pipe (`-o /dev/null`) is written in place: renaming a temporary onto it
+  // would replace the device with a plain file.
+  const fs::file_status existing = fs::status(path, error);
+  if (!error && fs::exists(existing) && !fs::is_regular_file(existing)) {
+    std::unique_ptr<OutputFile> file(new OutputFile(path, path));
+    file->in_place_ = true;
+    file->stream_.open(path, std::ios::binary);
+    if (!file->stream_) return IoError(path + ": cannot open for writing (no permission?)");
+    return file;
+  }
   MESHVID_RETURN_IF_ERROR(CreateParentFolders(path));
   // Unique per process and call, so two writers of one target never share a temporary.
   static std::atomic<unsigned> counter{0};
@@ -47,7 +57,7 @@ StatusOr<std::unique_ptr<OutputFile>> OutputFile::Open(const std::string& path) 
 }
 
 OutputFile::~OutputFile() {
-  if (committed_) return;
+  if (committed_ || in_place_) return;
   if (stream_.is_open()) stream_.close();
   std::error_code ignored;
   fs::remove(temporary_, ignored);
@@ -59,6 +69,10 @@ Status OutputFile::Commit() {
   const bool written = static_cast<bool>(stream_);
   stream_.close();
   if (!written || !stream_) return IoError(path_ + ": write failed (disk full?)");
+  if (in_place_) {
+    committed_ = true;
+    return Status::Ok();
+  }
   std::error_code error;
   fs::rename(temporary_, path_, error);
   if (error) return IoError(path_ + ": cannot replace it: " + error.message());

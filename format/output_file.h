@@ -1,6 +1,7 @@
 // One way to write an output file: parent folders are created, bytes go to a temporary file
 // beside the target, and the target appears only when the whole file is written. A failed or
-// abandoned write never leaves a truncated file (or a stray temporary) behind.
+// abandoned write never leaves a truncated file (or a stray temporary) behind. A target that
+// exists and is not a regular file (a device such as /dev/null, a pipe) is written in place.
 #ifndef MESHVID_FORMAT_OUTPUT_FILE_H_
 #define MESHVID_FORMAT_OUTPUT_FILE_H_
 
@@ -34,6 +35,9 @@ class OutputFile {
   const std::string& temporary_path() const { return temporary_; }
   /// Closes the temporary and renames it onto path(); kIoError if a write failed (disk full).
   Status Commit();
+  /// Whether the bytes go straight to path() (a device or a pipe): no temporary to read back
+  /// (temporary_path() is path()) and nothing to rename.
+  bool in_place() const { return in_place_; }
 
  private:
   OutputFile(std::string path, std::string temporary);
@@ -41,6 +45,7 @@ class OutputFile {
   std::string temporary_;
   std::ofstream stream_;
   bool committed_ = false;
+  bool in_place_ = false;
 };
 
 /// Writes `bytes` to `path` through an OutputFile (parents created, atomic replace).

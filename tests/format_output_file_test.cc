@@ -70,5 +70,20 @@ TEST(OutputFileTest, RefusesAFolderOrAFileInTheWay) {
   EXPECT_EQ(OutputFile::Open("").status().code(), StatusCode::kInvalidArgument);
 }
 
+// `-o /dev/null` writes into the device: renaming a temporary onto it would replace the
+// device with a plain file (for a user allowed to write in /dev).
+TEST(OutputFileTest, ADeviceIsWrittenInPlaceNotReplaced) {
+  const std::string device = "/dev/null";
+  if (!std::filesystem::is_character_file(device)) GTEST_SKIP() << device << " is no device here";
+  StatusOr<std::unique_ptr<OutputFile>> file = OutputFile::Open(device);
+  ASSERT_TRUE(file.ok()) << file.status().message();
+  EXPECT_TRUE((*file)->in_place());
+  (*file)->stream() << "bytes";
+  EXPECT_TRUE((*file)->Commit().ok());
+  EXPECT_TRUE(std::filesystem::is_character_file(device));
+  EXPECT_TRUE(WriteFileAtomically(device, "more").ok());
+  EXPECT_TRUE(std::filesystem::is_character_file(device));
+}
+
 }  // namespace
 }  // namespace meshvid

@@ -135,10 +135,12 @@ StatusOr<TranscodeSummary> TranscodeVideo(const std::string& input, const std::s
   MESHVID_RETURN_IF_ERROR(writer.Finish());
   summary.output_bytes = writer.bytes_written();
   // Measured on the written bytes before they become the output: a file that does not decode
-  // is never left behind.
+  // is never left behind. Bytes written in place to a device cannot be read back.
   if (!file->stream().flush()) return IoError(output + ": write failed");
-  MESHVID_RETURN_IF_ERROR(
-      MeasureChange(*source, file->temporary_path(), output, options.progress, &summary));
+  if (!file->in_place()) {
+    MESHVID_RETURN_IF_ERROR(
+        MeasureChange(*source, file->temporary_path(), output, options.progress, &summary));
+  }
   MESHVID_RETURN_IF_ERROR(file->Commit());
   return summary;
 }

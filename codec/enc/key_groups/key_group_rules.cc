@@ -80,8 +80,7 @@ ForgottenSurface MeasureForgottenSurface(const EncodeContext& ctx, const Triangl
           tree.knnSearch(posed[v].data(), 1, &nearest, &squared);
           const double distance = std::sqrt(double(squared));
           if (distance <= range) continue;
-          if (free_space &&
-              free_space->Judge(posed[v], normals[v], float(range),
+          if (free_space->Judge(posed[v], normals[v], float(range),
                                 /*across_too=*/true) == SeenFreeSpace::Verdict::kSeenThrough) {
             continue;
           }

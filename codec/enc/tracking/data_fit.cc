@@ -142,20 +142,28 @@ std::vector<float> SampleReach(std::span<const Eigen::Vector3f> samples,
   return reach;
 }
 
+namespace {
+
+/// The square of the decoded error's floor (kDecodedErrorFloor of the range).
+double FloorSquare(double representable_distance) {
+  const double floor = kDecodedErrorFloor * representable_distance;
+  return floor * floor;
+}
+
+}  // namespace
+
 double DecodedMeanSquare(const DataFit& fit, double representable_distance) {
   const double range_squared = representable_distance * representable_distance;
-  const double floor = kDecodedErrorFloor * kDecodedErrorFloor * range_squared;
-  return floor + fit.excess_mean_square + fit.seen_through_share * range_squared;
+  return FloorSquare(representable_distance) + fit.excess_mean_square +
+         fit.seen_through_share * range_squared;
 }
 
 double TrackingLossDb(const DataFit& key_frame, const DataFit& frame, double representable_distance,
                       const ForgottenSurface& forgotten) {
   if (frame.points == 0) return 0;
-  const double floor =
-      kDecodedErrorFloor * kDecodedErrorFloor * representable_distance * representable_distance;
   const double lost = std::clamp(forgotten.share, 0.0, 1.0);
-  const double tracked =
-      (1 - lost) * DecodedMeanSquare(frame, representable_distance) + lost * floor;
+  const double tracked = (1 - lost) * DecodedMeanSquare(frame, representable_distance) +
+                         lost * FloorSquare(representable_distance);
   const double fresh = (1 - lost) * DecodedMeanSquare(key_frame, representable_distance) +
                        lost * forgotten.mean_square;
   if (!std::isfinite(tracked)) return std::numeric_limits<double>::infinity();

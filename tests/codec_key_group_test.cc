@@ -14,6 +14,7 @@
 #include "codec/dec/mvid_decoder.h"
 #include "codec/enc/encoder.h"
 #include "codec/enc/key_groups/key_group_rules.h"
+#include "codec/enc/key_groups/tracking_targets.h"
 #include "codec/enc/tracking/data_fit.h"
 #include "format/container_reader.h"
 #include "tests/analytic_mvid.h"
@@ -511,6 +512,44 @@ TEST(KeyGroups, BasesMadeAheadGiveTheSameFile) {
   EXPECT_EQ(lengths, (std::vector<int>{2, 1, 1, 2, 1, 2}));
   ASSERT_FALSE(ahead.bytes.empty());
   EXPECT_TRUE(ahead.bytes == in_turn.bytes) << "the files differ";
+}
+
+TEST(KeyGroups, TrackingTargetsMadeAheadAreThoseMadeInTurn) {
+  std::vector<std::vector<TriangleMesh>> views;
+  for (TriangleMesh& frame : TwoBodyFrames(4, 0.01f, /*jump_frame=*/2)) views.push_back({frame});
+  StatusOr<MemoryFrameSource> source = MemoryFrameSource::Create(std::move(views));
+  ASSERT_TRUE(source.ok()) << source.status().ToString();
+  const EncoderOptions options = TestOptions();
+  ASSERT_TRUE(options.tuning.deform_track_fused);
+  const ProgressCallback progress;
+  EncodeContext ctx{*source, options, progress, {}, {}, /*end=*/4, {}};
+  ctx.lengths.proxy_max_edge = 0.1f;
+  ProxyCache in_turn_proxies, ahead_proxies;
+  TrackingTargets in_turn(ctx, &in_turn_proxies);
+  const StatusOr<TrackingData> made_here = in_turn.DataOf(1);
+  ASSERT_TRUE(made_here.ok()) << made_here.status().ToString();
+  ASSERT_GT(made_here->points.size(), 100u);
+  auto same = [](std::span<const Eigen::Vector3f> a, std::span<const Eigen::Vector3f> b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end());
+  };
+  {
+    TrackingTargets ahead(ctx, &ahead_proxies);
+    ASSERT_TRUE(ahead.StartMaking(1).ok());
+    ASSERT_TRUE(ahead.StartMaking(2).ok());  // one frame at a time: frame 2 waits
+    ASSERT_TRUE(ahead.StartMaking(4).ok());  // past the encode's end: nothing
+    const StatusOr<TrackingData> made_ahead = ahead.DataOf(1);
+    ASSERT_TRUE(made_ahead.ok()) << made_ahead.status().ToString();
+    EXPECT_TRUE(same(made_ahead->points, made_here->points));
+    EXPECT_TRUE(same(made_ahead->normals, made_here->normals));
+    EXPECT_TRUE(same(ahead.Proxy(1).points, in_turn.Proxy(1).points));
+    ASSERT_NE(ahead.Fused(1), nullptr);
+    EXPECT_EQ(ahead.Fused(2), nullptr);
+    ASSERT_TRUE(ahead.StartMaking(2).ok());
+  }
+  // Dropped while frame 2 was in making: its proxy is kept for the key groups after.
+  ASSERT_EQ(ahead_proxies.count(2), 1u);
+  ASSERT_TRUE(in_turn.DataOf(2).ok());
+  EXPECT_TRUE(same(ahead_proxies.at(2).points, in_turn.Proxy(2).points));
 }
 
 TEST(KeyGroups, ASheetWhoseHoleGrowsEndsTheKeyGroupWhereACameraSeesThroughIt) {

@@ -42,14 +42,14 @@ class KeyGroupTracking {
  public:
   KeyGroupTracking(const EncodeContext& ctx, const BaseTopology& topology,
                    const DeformationGraph& graph, const RegularSubdivision& lattice, int first,
-                   int key, bool may_cut, const MotionHint& hint, ProxyCache* proxies,
-                   FusedFrames* fused_frames, KeyGroupAnalysis* analysis)
+                   int key, bool may_cut, const MotionHint& hint, TrackingTargets* targets,
+                   KeyGroupAnalysis* analysis)
       : ctx_(ctx),
         first_(first),
         key_(key),
         may_cut_(may_cut),
-        proxies_(*proxies),
-        fused_frames_(*fused_frames),
+        targets_(*targets),
+        proxies_(targets->proxies()),
         analysis_(*analysis),
         tracking_options_(TrackingOptions(ctx)),
         tracker_(topology, graph, tracking_options_),
@@ -88,8 +88,9 @@ class KeyGroupTracking {
 
  private:
   /// What frame t is tracked to: the frame fused (closed where no view saw it, as a key
-  /// frame's base would be), or its views' proxy. Loaded once: the second frame looks ahead.
-  StatusOr<TrackingData> DataOf(int t);
+  /// frame's base would be), or its views' proxy (TrackingTargets::DataOf). Loaded once: the
+  /// second frame looks ahead.
+  StatusOr<TrackingData> DataOf(int t) { return targets_.DataOf(t); }
   /// What a fresh base fused from frame `t` would lose of the key group's surface posed by
   /// `track` (MeasureForgottenSurface against the frame's fused surface, or its proxy's
   /// points when frames are not fused for tracking).
@@ -113,8 +114,8 @@ class KeyGroupTracking {
   const EncodeContext& ctx_;
   const int first_, key_;
   const bool may_cut_;
+  TrackingTargets& targets_;
   ProxyCache& proxies_;
-  FusedFrames& fused_frames_;
   KeyGroupAnalysis& analysis_;
   /// The tracker's settings for this encode (TrackingOptions).
   const DeformationTrackingOptions tracking_options_;
@@ -128,36 +129,13 @@ class KeyGroupTracking {
 };
 
 ForgottenSurface KeyGroupTracking::Forgotten(int t, std::span<const RigidTransform> track) const {
-  const auto fused = fused_frames_.find(t);
+  const PointsWithNormals* fused = targets_.Fused(t);
   const FrameProxy& proxy = proxies_.at(t);
   const std::span<const Eigen::Vector3f> surface =
-      fused != fused_frames_.end() ? std::span<const Eigen::Vector3f>(fused->second.positions)
-                                   : std::span<const Eigen::Vector3f>(proxy.points);
+      fused != nullptr ? std::span<const Eigen::Vector3f>(fused->positions)
+                       : std::span<const Eigen::Vector3f>(proxy.points);
   return MeasureForgottenSurface(ctx_, analysis_.base, analysis_.motion, track, observed_, surface,
                                  proxy.free_space.get());
-}
-
-StatusOr<TrackingData> KeyGroupTracking::DataOf(int t) {
-  const bool track_fused = ctx_.options.tuning.deform_track_fused;
-  if (track_fused && fused_frames_.count(t) > 0) {
-    const PointsWithNormals& fused = fused_frames_.at(t);
-    return TrackingData{fused.positions, fused.normals};
-  }
-  if (!track_fused && proxies_.count(t) > 0) {
-    return TrackingData{proxies_.at(t).points, proxies_.at(t).normals};
-  }
-  // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
-  MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
-  if (proxies_.count(t) == 0) {
-    MESHVID_ASSIGN_OR_RETURN(proxies_[t], BuildProxy(ctx_, views));
-  }
-  if (!track_fused) return TrackingData{proxies_.at(t).points, proxies_.at(t).normals};
-  MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused,
-                           FuseFrame(ctx_, views, ctx_.options.tuning.base_fusion_points));
-  PointsWithNormals& kept = fused_frames_[t];
-  kept.normals = ComputeVertexNormals(fused);
-  kept.positions = std::move(fused.positions);
-  return TrackingData{kept.positions, kept.normals};
 }
 
 Status KeyGroupTracking::FirstStep(int t, int direction, const TrackingData& data,
@@ -225,11 +203,11 @@ StatusOr<bool> KeyGroupTracking::TrackRun(int direction, int last,
   int looked_ahead_reacquired = 0;
   for (int t = key_ + direction; direction * (last - t) >= 0; t += direction) {
     if (!ReportProgress(ctx_.progress, "tracking", t, ctx_.end)) return Cancelled();
-    if (direction > 0) {  // the frames behind are done with
-      proxies_.erase(proxies_.begin(), proxies_.lower_bound(t));
-      fused_frames_.erase(fused_frames_.begin(), fused_frames_.lower_bound(t));
-    }
+    if (direction > 0) targets_.DropBefore(t);  // the frames behind are done with
     MESHVID_ASSIGN_OR_RETURN(const TrackingData data, DataOf(t));
+    if (direction * (last - (t + direction)) >= 0) {
+      MESHVID_RETURN_IF_ERROR(targets_.StartMaking(t + direction));
+    }
     const FrameProxy& proxy = proxies_[t];
     const std::vector<RigidTransform>& previous = run->empty() ? identity_ : run->back();
     const std::span<const RigidTransform> before =
@@ -276,8 +254,8 @@ StatusOr<bool> KeyGroupTracking::TrackRun(int direction, int last,
 }  // namespace
 
 Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topology, int first,
-                             int key, bool may_cut, const MotionHint& hint, ProxyCache* proxies,
-                             FusedFrames* fused_frames, KeyGroupAnalysis* analysis) {
+                             int key, bool may_cut, const MotionHint& hint,
+                             TrackingTargets* targets, KeyGroupAnalysis* analysis) {
   const EncoderOptions& options = ctx.options;
   const TriangleMesh& base = analysis->base;
   KeyGroupSummary& summary = analysis->summary;
@@ -292,8 +270,8 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   summary.key_frame = key;
   MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice,
                            RegularSubdivision::Create(base, std::min(options.levels, 2)));
-  KeyGroupTracking tracking(ctx, topology, graph, lattice, first, key, may_cut, hint, proxies,
-                            fused_frames, analysis);
+  KeyGroupTracking tracking(ctx, topology, graph, lattice, first, key, may_cut, hint, targets,
+                            analysis);
   std::vector<std::vector<RigidTransform>> backwards, forwards;
   MESHVID_ASSIGN_OR_RETURN(const bool lost_before_key, tracking.TrackRun(-1, first, &backwards));
   if (lost_before_key) {
@@ -310,7 +288,8 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   tracks.insert(tracks.end(), std::make_move_iterator(forwards.begin()),
                 std::make_move_iterator(forwards.end()));
   summary.frames = static_cast<int>(tracks.size());
-  proxies->erase(proxies->begin(), proxies->lower_bound(first + summary.frames));
+  ProxyCache& proxies = targets->proxies();
+  proxies.erase(proxies.begin(), proxies.lower_bound(first + summary.frames));
   summary.rigid_groups = nodes;
   if (options.tuning.deform_rigid_group_factor > 0) {
     const RigidNodeGroups groups = FindRigidNodeGroups(

@@ -4,16 +4,8 @@
 #include <utility>
 
 namespace meshvid {
-namespace {
 
-// The thread made ahead reports no progress: the callback is the caller's, on its own thread.
-const ProgressCallback kNoProgress;
-
-}  // namespace
-
-KeyFrameAhead::KeyFrameAhead(const EncodeContext& ctx)
-    : quiet_{ctx.source, ctx.options, kNoProgress,     ctx.lengths,
-             ctx.shot,   ctx.end,     ctx.view_cameras} {}
+KeyFrameAhead::KeyFrameAhead(const EncodeContext& ctx) : quiet_(WithoutProgress(ctx)) {}
 
 KeyFrameAhead::~KeyFrameAhead() {
   for (auto& [frame, made] : made_) made.base.wait();

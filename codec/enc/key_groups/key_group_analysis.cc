@@ -18,12 +18,19 @@
 #include "codec/enc/fusion/surface_fusion.h"
 #include "codec/enc/key_groups/deformed_key_group.h"
 #include "codec/enc/key_groups/key_group_rules.h"
+#include "codec/enc/key_groups/tracking_targets.h"
 #include "codec/enc/tracking/closest_point_align.h"
 #include "codec/enc/tracking/data_fit.h"
 
 namespace meshvid {
 
 Status Cancelled() { return CancelledError("encode cancelled"); }
+
+EncodeContext WithoutProgress(const EncodeContext& ctx) {
+  static const ProgressCallback kNoProgress;
+  return EncodeContext{ctx.source, ctx.options, kNoProgress,     ctx.lengths,
+                       ctx.shot,   ctx.end,     ctx.view_cameras};
+}
 
 StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
                                 bool free_space) {
@@ -178,10 +185,13 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   ProxyCache& proxies = *cache;
   proxies.erase(proxies.begin(), proxies.lower_bound(start));
   // With tuning.deform_backward_frames: the key frame a few frames on, tracked back to this one.
-  FusedFrames fused_frames;
   double seconds_on_later_key_frame = 0;
   const int later_key = std::min(start + options.tuning.deform_backward_frames, ctx.end - 1);
-  if (may_cut && !options.base_mesh && later_key > start) {
+  const bool later_key_first = may_cut && !options.base_mesh && later_key > start;
+  // The first frame tracked is made on another thread while the base is made here.
+  TrackingTargets targets(ctx, &proxies);
+  MESHVID_RETURN_IF_ERROR(targets.StartMaking(later_key_first ? later_key - 1 : start + 1));
+  if (later_key_first) {
     KeyGroupAnalysis later;
     later.summary.first_frame = start;
     MESHVID_ASSIGN_OR_RETURN(
@@ -192,7 +202,7 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     later.summary.base_vertices = later.base.vertex_count();
     later.seconds_base = SecondsSince(stage_start);
     MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, later_topology, start, later_key, may_cut,
-                                                  hint, &proxies, &fused_frames, &later));
+                                                  hint, &targets, &later));
     if (later.summary.frames > 0) return later;
     // A frame before the later key frame was lost: the key frame is this one after all.
     seconds_on_later_key_frame = later.seconds_base;
@@ -207,8 +217,8 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start) + seconds_on_later_key_frame;
 
-  MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, hint,
-                                                &proxies, &fused_frames, &analysis));
+  MESHVID_RETURN_IF_ERROR(
+      TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, hint, &targets, &analysis));
   return analysis;
 }
 

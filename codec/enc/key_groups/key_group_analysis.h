@@ -81,6 +81,10 @@ StatusOr<FrameProxy> BuildProxy(const EncodeContext& ctx, const std::vector<Tria
 /// The error a cancelled progress callback ends an encode with.
 Status Cancelled();
 
+/// `ctx` without its progress callback, for work on another thread (the callback is the
+/// caller's, on its own thread). Refers to `ctx`'s source and options: `ctx` must outlive it.
+EncodeContext WithoutProgress(const EncodeContext& ctx);
+
 /// The analysis of one key group: its base mesh, motion model and the tracks of its frames.
 struct KeyGroupAnalysis {
   TriangleMesh base;

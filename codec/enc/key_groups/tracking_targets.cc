@@ -1,0 +1,93 @@
+#include "codec/enc/key_groups/tracking_targets.h"
+
+#include <utility>
+
+#include "codec/enc/key_groups/key_group_rules.h"
+
+namespace meshvid {
+
+TrackingTargets::TrackingTargets(const EncodeContext& ctx, ProxyCache* proxies)
+    : ctx_(ctx), quiet_(WithoutProgress(ctx)), proxies_(*proxies) {}
+
+TrackingTargets::~TrackingTargets() {
+  if (!in_making_) return;
+  StatusOr<Made> made = in_making_->made.get();
+  if (made.ok() && made->proxy && proxies_.count(in_making_->frame) == 0) {
+    proxies_[in_making_->frame] = *std::move(made->proxy);
+  }
+}
+
+bool TrackingTargets::Ready(int t) const {
+  return proxies_.count(t) > 0 && (!ctx_.options.tuning.deform_track_fused || fused_.count(t) > 0);
+}
+
+StatusOr<TrackingTargets::Made> TrackingTargets::Make(const EncodeContext& ctx,
+                                                      const std::vector<TriangleMesh>& views,
+                                                      bool proxy, bool fused) {
+  Made made;
+  if (proxy) {
+    MESHVID_ASSIGN_OR_RETURN(made.proxy, BuildProxy(ctx, views));
+  }
+  if (fused) {
+    MESHVID_ASSIGN_OR_RETURN(TriangleMesh mesh,
+                             FuseFrame(ctx, views, ctx.options.tuning.base_fusion_points));
+    PointsWithNormals& kept = made.fused.emplace();
+    kept.normals = ComputeVertexNormals(mesh);
+    kept.positions = std::move(mesh.positions);
+  }
+  return made;
+}
+
+void TrackingTargets::Keep(int t, Made made) {
+  if (made.proxy && proxies_.count(t) == 0) proxies_[t] = *std::move(made.proxy);
+  if (made.fused && fused_.count(t) == 0) fused_[t] = *std::move(made.fused);
+}
+
+Status TrackingTargets::StartMaking(int t) {
+  if (t < 0 || t >= ctx_.end || Ready(t) || in_making_) return Status::Ok();
+  // The views are loaded on this thread: the frame source is not made for several.
+  MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
+  const bool proxy = proxies_.count(t) == 0;
+  const bool fused = ctx_.options.tuning.deform_track_fused && fused_.count(t) == 0;
+  in_making_.emplace();
+  in_making_->frame = t;
+  in_making_->made = std::async(std::launch::async, [this, views = std::move(views), proxy, fused] {
+    return Make(quiet_, views, proxy, fused);
+  });
+  return Status::Ok();
+}
+
+StatusOr<TrackingData> TrackingTargets::DataOf(int t) {
+  if (in_making_ && in_making_->frame == t) {
+    StatusOr<Made> made = in_making_->made.get();
+    in_making_.reset();
+    if (!made.ok()) return made.status();
+    Keep(t, *std::move(made));
+  }
+  const bool track_fused = ctx_.options.tuning.deform_track_fused;
+  if (!Ready(t)) {
+    // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
+    MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
+    MESHVID_ASSIGN_OR_RETURN(
+        Made made, Make(ctx_, views, proxies_.count(t) == 0, track_fused && fused_.count(t) == 0));
+    Keep(t, std::move(made));
+  }
+  if (track_fused) {
+    const PointsWithNormals& fused = fused_.at(t);
+    return TrackingData{fused.positions, fused.normals};
+  }
+  const FrameProxy& proxy = proxies_.at(t);
+  return TrackingData{proxy.points, proxy.normals};
+}
+
+const PointsWithNormals* TrackingTargets::Fused(int t) const {
+  const auto found = fused_.find(t);
+  return found != fused_.end() ? &found->second : nullptr;
+}
+
+void TrackingTargets::DropBefore(int t) {
+  proxies_.erase(proxies_.begin(), proxies_.lower_bound(t));
+  fused_.erase(fused_.begin(), fused_.lower_bound(t));
+}
+
+}  // namespace meshvid

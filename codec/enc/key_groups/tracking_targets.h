@@ -1,0 +1,88 @@
+// The frames a key group's nodes are tracked to (internal to the encoder): each frame's proxy
+// and, with tuning.deform_track_fused, its views fused, made once each and, one frame at a
+// time, ahead on another thread.
+#ifndef MESHVID_CODEC_ENC_KEY_GROUPS_TRACKING_TARGETS_H_
+#define MESHVID_CODEC_ENC_KEY_GROUPS_TRACKING_TARGETS_H_
+
+#include <future>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "codec/enc/key_groups/key_group_analysis.h"
+#include "codec/enc/tracking/deformation_tracking.h"
+#include "format/status.h"
+
+namespace meshvid {
+
+/// A frame's fused surface as the deformation tracker searches it.
+struct PointsWithNormals {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;
+};
+
+/// The tracking targets of the frames of one key group's analysis. A frame's proxy goes to the
+/// encode's ProxyCache (the key groups after share it), its fused surface stays here (the
+/// tracking runs of one analysis share it: a first-frame key group after a later key frame
+/// failed fuses no frame again). The frame a key group tracks next can be made on another
+/// thread (StartMaking) while this one solves the frame before or makes the base: the solve
+/// leaves a core idle at times and a base's decimation runs on one, while a frame's proxy
+/// decimation and fusion are most of a tracked frame's time. What is made there is what would
+/// be made here, so the file is the same either way.
+class TrackingTargets {
+ public:
+  /// `ctx` and `proxies` must outlive this object.
+  TrackingTargets(const EncodeContext& ctx, ProxyCache* proxies);
+  /// Waits for a frame still in making; its proxy, when made, is kept in the cache.
+  ~TrackingTargets();
+  TrackingTargets(const TrackingTargets&) = delete;
+  TrackingTargets& operator=(const TrackingTargets&) = delete;
+
+  /// Starts making frame `t`'s targets on another thread, from its views loaded here. Nothing
+  /// when they are made, another frame is in making, or `t` is not in the encode.
+  Status StartMaking(int t);
+
+  /// What frame `t` is tracked to: its fused surface (tuning.deform_track_fused) or its
+  /// proxy's points; made here unless made already or in making (then waited for).
+  StatusOr<TrackingData> DataOf(int t);
+
+  /// Frame `t`'s proxy, made by DataOf(t) or earlier.
+  const FrameProxy& Proxy(int t) const { return proxies_.at(t); }
+  /// Frame `t`'s fused surface, or null when it is not fused.
+  const PointsWithNormals* Fused(int t) const;
+  /// The encode's proxies.
+  ProxyCache& proxies() { return proxies_; }
+  /// Drops the frames before `t` (a forward run is done with them).
+  void DropBefore(int t);
+
+ private:
+  /// A frame's targets as made: each only where it was missing.
+  struct Made {
+    std::optional<FrameProxy> proxy;
+    std::optional<PointsWithNormals> fused;
+  };
+  struct InMaking {
+    int frame = 0;
+    std::future<StatusOr<Made>> made;
+  };
+
+  /// Whether frame t's proxy, and its fused surface where frames are fused, are made.
+  bool Ready(int t) const;
+  /// Frame t's missing targets, made from its views with `ctx`.
+  static StatusOr<Made> Make(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
+                             bool proxy, bool fused);
+  /// Keeps what was made for frame t.
+  void Keep(int t, Made made);
+
+  const EncodeContext& ctx_;
+  const EncodeContext quiet_;  ///< ctx_ without progress, for the other thread
+  ProxyCache& proxies_;
+  std::map<int, PointsWithNormals> fused_;
+  std::optional<InMaking> in_making_;
+};
+
+}  // namespace meshvid
+
+#endif  // MESHVID_CODEC_ENC_KEY_GROUPS_TRACKING_TARGETS_H_

@@ -10,6 +10,7 @@
 #include "codec/enc/key_groups/detail.h"
 #include "codec/enc/key_groups/key_frame_ahead.h"
 #include "codec/enc/key_groups/key_group_analysis.h"
+#include "codec/enc/key_groups/tracking_targets.h"
 
 namespace meshvid {
 namespace {
@@ -277,6 +278,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   std::unique_ptr<MvidWriter> writer;
   std::size_t filled = 0, hits = 0, samples = 0;
   MadeAhead ahead(ctx);
+  TrackingTargets targets(ctx, &ahead.proxies());  // after `ahead`: it keeps proxies there
   MotionHint hint;  // how the surface moved into the frame that ended the last key group
   for (int start = first; start < end;) {
     const bool may_cut = options.max_key_groups == 0 ||
@@ -291,7 +293,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
     }
     MESHVID_ASSIGN_OR_RETURN(
         KeyGroupAnalysis analysis,
-        AnalyseKeyGroup(ctx, start, may_cut, hint, &ahead.proxies(), std::move(base_made_ahead),
+        AnalyseKeyGroup(ctx, start, may_cut, hint, &targets, std::move(base_made_ahead),
                         [&ahead](int frame) { return ahead.TakeLaterBase(frame); }));
     analysis.seconds_base += seconds_waited;
     hint = std::move(analysis.hint);

@@ -129,10 +129,10 @@ class KeyGroupTracking {
 };
 
 ForgottenSurface KeyGroupTracking::Forgotten(int t, std::span<const RigidTransform> track) const {
-  const PointsWithNormals* fused = targets_.Fused(t);
+  const FusedFrame* fused = targets_.Fused(t);
   const FrameProxy& proxy = proxies_.at(t);
   const std::span<const Eigen::Vector3f> surface =
-      fused != nullptr ? std::span<const Eigen::Vector3f>(fused->positions)
+      fused != nullptr ? std::span<const Eigen::Vector3f>(fused->mesh.positions)
                        : std::span<const Eigen::Vector3f>(proxy.points);
   return MeasureForgottenSurface(ctx_, analysis_.base, analysis_.motion, track, observed_, surface,
                                  proxy.free_space.get());

@@ -86,12 +86,12 @@ StatusOr<DataFit> FitOfBase(const TriangleMesh& base, int levels,
 }
 
 /// A key group's base mesh: the user's, rigidly fitted to the key frame's data points
-/// (`points`, its proxy's), or the key frame's fused views (at most `fusion_points` of them)
-/// decimated.
+/// (`points`, its proxy's), or the key frame's fused views (at most `fusion_points` of them;
+/// `fused` when given, that fusion made already) decimated.
 StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
                                     const std::vector<TriangleMesh>& views,
                                     std::span<const Eigen::Vector3f> points,
-                                    std::size_t fusion_points) {
+                                    std::size_t fusion_points, const TriangleMesh* fused_views) {
   const EncoderOptions& options = ctx.options;
   if (options.base_mesh) {
     TriangleMesh base = *options.base_mesh;
@@ -109,7 +109,12 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
     }
     return base;
   }
-  MESHVID_ASSIGN_OR_RETURN(TriangleMesh fused, FuseFrame(ctx, views, fusion_points));
+  TriangleMesh fused;
+  if (fused_views != nullptr) {
+    fused = *fused_views;
+  } else {
+    MESHVID_ASSIGN_OR_RETURN(fused, FuseFrame(ctx, views, fusion_points));
+  }
   // Lower qualities divide the target by the coarsening and multiply the bounds by its square.
   const double coarsening = BaseCoarsening(options.quality);
   const double bounds = coarsening * coarsening;
@@ -133,10 +138,13 @@ StatusOr<TriangleMesh> MakeBaseMesh(const EncodeContext& ctx,
 
 StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
-                                        const FrameProxy& proxy) {
+                                        const FrameProxy& proxy, const TriangleMesh* fused) {
   const SurfaceFusionOptions defaults;
   const std::size_t fast = std::min(ctx.options.tuning.base_fusion_points, defaults.max_points);
-  StatusOr<TriangleMesh> base = MakeBaseMesh(ctx, views, proxy.points, fast);
+  // `fused` is FuseFrame's from base_fusion_points: it serves where that is the fast fusion.
+  const bool made = fused != nullptr && fast == ctx.options.tuning.base_fusion_points;
+  StatusOr<TriangleMesh> base =
+      MakeBaseMesh(ctx, views, proxy.points, fast, made ? fused : nullptr);
   if (ctx.options.base_mesh || fast >= defaults.max_points) return base;
   double unexplained = 1;
   if (base.ok()) {
@@ -145,7 +153,8 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
     unexplained = fit.unexplained_share;
     if (unexplained <= kMostUnexplainedAtKeyFrame) return base;
   }
-  StatusOr<TriangleMesh> careful = MakeBaseMesh(ctx, views, proxy.points, defaults.max_points);
+  StatusOr<TriangleMesh> careful =
+      MakeBaseMesh(ctx, views, proxy.points, defaults.max_points, nullptr);
   if (!careful.ok()) return base.ok() ? base : careful;
   if (!base.ok()) return careful;
   MESHVID_ASSIGN_OR_RETURN(const DataFit fit, FitOfBase(*careful, ctx.options.levels,
@@ -157,23 +166,25 @@ StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
 namespace {
 
 /// The base of a key group whose key frame is `frame`: `made_ahead` (the same base, made on
-/// another thread) when given and the frame's proxy is cached, else MakeKeyFrameBase, the
-/// frame's proxy made and cached when missing.
-StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, ProxyCache* proxies,
+/// another thread) when given and the frame's proxy is cached, else MakeKeyFrameBase (from the
+/// frame's fusion when `targets` has it), the frame's proxy made and cached when missing.
+StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, TrackingTargets* targets,
                                       std::optional<TriangleMesh> made_ahead) {
-  if (made_ahead && proxies->count(frame)) return *std::move(made_ahead);
+  ProxyCache& proxies = targets->proxies();
+  if (made_ahead && proxies.count(frame)) return *std::move(made_ahead);
   MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx.source.LoadFrame(frame));
-  if (!proxies->count(frame)) {
-    MESHVID_ASSIGN_OR_RETURN((*proxies)[frame], BuildProxy(ctx, views));
+  if (!proxies.count(frame)) {
+    MESHVID_ASSIGN_OR_RETURN(proxies[frame], BuildProxy(ctx, views));
   }
-  return MakeKeyFrameBase(ctx, views, (*proxies)[frame]);
+  const FusedFrame* fused = targets->Fused(frame);
+  return MakeKeyFrameBase(ctx, views, proxies[frame], fused != nullptr ? &fused->mesh : nullptr);
 }
 
 }  // namespace
 
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
-    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint, ProxyCache* cache,
-    std::optional<TriangleMesh> base_made_ahead,
+    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint,
+    TrackingTargets* targets, std::optional<TriangleMesh> base_made_ahead,
     const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead) {
   const EncoderOptions& options = ctx.options;
   KeyGroupAnalysis analysis;
@@ -182,27 +193,24 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
   summary.key_frame = start;
   if (!ReportProgress(ctx.progress, "base mesh", start, ctx.end)) return Cancelled();
   auto stage_start = Clock::now();
-  ProxyCache& proxies = *cache;
-  proxies.erase(proxies.begin(), proxies.lower_bound(start));
+  targets->DropBefore(start);
   // With tuning.deform_backward_frames: the key frame a few frames on, tracked back to this one.
   double seconds_on_later_key_frame = 0;
   const int later_key = std::min(start + options.tuning.deform_backward_frames, ctx.end - 1);
   const bool later_key_first = may_cut && !options.base_mesh && later_key > start;
   // The first frame tracked is made on another thread while the base is made here.
-  TrackingTargets targets(ctx, &proxies);
-  MESHVID_RETURN_IF_ERROR(targets.StartMaking(later_key_first ? later_key - 1 : start + 1));
+  MESHVID_RETURN_IF_ERROR(targets->StartMaking(later_key_first ? later_key - 1 : start + 1));
   if (later_key_first) {
     KeyGroupAnalysis later;
     later.summary.first_frame = start;
     MESHVID_ASSIGN_OR_RETURN(
-        later.base,
-        BaseOfKeyFrame(ctx, later_key, &proxies,
-                       later_base_ahead ? later_base_ahead(later_key) : std::nullopt));
+        later.base, BaseOfKeyFrame(ctx, later_key, targets,
+                                   later_base_ahead ? later_base_ahead(later_key) : std::nullopt));
     const BaseTopology later_topology(later.base);
     later.summary.base_vertices = later.base.vertex_count();
     later.seconds_base = SecondsSince(stage_start);
     MESHVID_RETURN_IF_ERROR(TrackDeformedKeyGroup(ctx, later_topology, start, later_key, may_cut,
-                                                  hint, &targets, &later));
+                                                  hint, targets, &later));
     if (later.summary.frames > 0) return later;
     // A frame before the later key frame was lost: the key frame is this one after all.
     seconds_on_later_key_frame = later.seconds_base;
@@ -211,14 +219,14 @@ StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     stage_start = Clock::now();
   }
   MESHVID_ASSIGN_OR_RETURN(analysis.base,
-                           BaseOfKeyFrame(ctx, start, &proxies, std::move(base_made_ahead)));
+                           BaseOfKeyFrame(ctx, start, targets, std::move(base_made_ahead)));
   const TriangleMesh& base = analysis.base;
   const BaseTopology topology(base);  // one-rings and normals, once per key group
   summary.base_vertices = base.vertex_count();
   analysis.seconds_base = SecondsSince(stage_start) + seconds_on_later_key_frame;
 
   MESHVID_RETURN_IF_ERROR(
-      TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, hint, &targets, &analysis));
+      TrackDeformedKeyGroup(ctx, topology, start, start, may_cut, hint, targets, &analysis));
   return analysis;
 }
 

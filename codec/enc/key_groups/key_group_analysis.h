@@ -103,24 +103,29 @@ struct KeyGroupAnalysis {
 };
 
 /// The base of a key frame whose views are `views` and proxy `proxy`: fused from few points
-/// first (fast), redone from the fusion's default number of points when that fails or
-/// explains too little of the frame; or the user's base mesh fitted to the frame.
+/// first (fast; `fused`, when given, is that fusion, FuseFrame's from
+/// tuning.base_fusion_points, made already), redone from the fusion's default number of points
+/// when that fails or explains too little of the frame; or the user's base mesh fitted to the
+/// frame.
 StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
-                                        const FrameProxy& proxy);
+                                        const FrameProxy& proxy,
+                                        const TriangleMesh* fused = nullptr);
+
+class TrackingTargets;
 
 /// Analyses the key group that starts at frame `start`: base, motion, tracks; and, when
-/// `may_cut`, where it ends (the first frame its tracked base no longer explains). `cache`
-/// keeps the proxies of frames the next key group may need. `hint`, the key group before's
-/// (KeyGroupAnalysis::hint), predicts the second frame's motion when its frame is the key
-/// frame.
-/// `base_made_ahead`, when given, is frame `start`'s base (MakeKeyFrameBase's, made on another
-/// thread: key_frame_ahead.h); it is used when `cache` holds the frame's proxy. With
-/// EncoderTuning::deform_backward_frames, `later_base_ahead`, when given, is asked for the
-/// later key frame's base (and puts its proxy in `cache`) before one is made.
+/// `may_cut`, where it ends (the first frame its tracked base no longer explains). `targets`
+/// (tracking_targets.h) keeps the frames' proxies (its ProxyCache, `cache` below) and fused
+/// surfaces the next key group may need; the key frame's base starts from its fusion there. `hint`,
+/// the key group before's (KeyGroupAnalysis::hint), predicts the second frame's motion when its
+/// frame is the key frame. `base_made_ahead`, when given, is frame `start`'s base
+/// (MakeKeyFrameBase's, made on another thread: key_frame_ahead.h); it is used when `cache` holds
+/// the frame's proxy. With EncoderTuning::deform_backward_frames, `later_base_ahead`, when given,
+/// is asked for the later key frame's base (and puts its proxy in `cache`) before one is made.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
-    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint, ProxyCache* cache,
-    std::optional<TriangleMesh> base_made_ahead = {},
+    const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint,
+    TrackingTargets* targets, std::optional<TriangleMesh> base_made_ahead = {},
     const std::function<std::optional<TriangleMesh>(int frame)>& later_base_ahead = {});
 
 }  // namespace meshvid

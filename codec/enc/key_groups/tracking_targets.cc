@@ -29,11 +29,10 @@ StatusOr<TrackingTargets::Made> TrackingTargets::Make(const EncodeContext& ctx,
     MESHVID_ASSIGN_OR_RETURN(made.proxy, BuildProxy(ctx, views));
   }
   if (fused) {
-    MESHVID_ASSIGN_OR_RETURN(TriangleMesh mesh,
+    FusedFrame& kept = made.fused.emplace();
+    MESHVID_ASSIGN_OR_RETURN(kept.mesh,
                              FuseFrame(ctx, views, ctx.options.tuning.base_fusion_points));
-    PointsWithNormals& kept = made.fused.emplace();
-    kept.normals = ComputeVertexNormals(mesh);
-    kept.positions = std::move(mesh.positions);
+    kept.normals = ComputeVertexNormals(kept.mesh);
   }
   return made;
 }
@@ -73,14 +72,14 @@ StatusOr<TrackingData> TrackingTargets::DataOf(int t) {
     Keep(t, std::move(made));
   }
   if (track_fused) {
-    const PointsWithNormals& fused = fused_.at(t);
-    return TrackingData{fused.positions, fused.normals};
+    const FusedFrame& fused = fused_.at(t);
+    return TrackingData{fused.mesh.positions, fused.normals};
   }
   const FrameProxy& proxy = proxies_.at(t);
   return TrackingData{proxy.points, proxy.normals};
 }
 
-const PointsWithNormals* TrackingTargets::Fused(int t) const {
+const FusedFrame* TrackingTargets::Fused(int t) const {
   const auto found = fused_.find(t);
   return found != fused_.end() ? &found->second : nullptr;
 }

@@ -17,16 +17,18 @@
 
 namespace meshvid {
 
-/// A frame's fused surface as the deformation tracker searches it.
-struct PointsWithNormals {
-  std::vector<Eigen::Vector3f> positions;
-  std::vector<Eigen::Vector3f> normals;
+/// A frame's views fused (FuseFrame from tuning.base_fusion_points) as the deformation tracker
+/// searches it, and as its key frame's base starts from.
+struct FusedFrame {
+  TriangleMesh mesh;
+  std::vector<Eigen::Vector3f> normals;  ///< the mesh's vertex normals
 };
 
-/// The tracking targets of the frames of one key group's analysis. A frame's proxy goes to the
-/// encode's ProxyCache (the key groups after share it), its fused surface stays here (the
-/// tracking runs of one analysis share it: a first-frame key group after a later key frame
-/// failed fuses no frame again). The frame a key group tracks next can be made on another
+/// The tracking targets of an encode's frames, each made once: a frame's proxy goes to the
+/// encode's ProxyCache, its fused surface stays here, and the key groups share both (the frame
+/// that ends a key group is the next one's key frame, whose base starts from the same fusion;
+/// a first-frame key group after a later key frame failed fuses no frame again). The frame a
+/// key group tracks next can be made on another
 /// thread (StartMaking) while this one solves the frame before or makes the base: the solve
 /// leaves a core idle at times and a base's decimation runs on one, while a frame's proxy
 /// decimation and fusion are most of a tracked frame's time. What is made there is what would
@@ -51,17 +53,17 @@ class TrackingTargets {
   /// Frame `t`'s proxy, made by DataOf(t) or earlier.
   const FrameProxy& Proxy(int t) const { return proxies_.at(t); }
   /// Frame `t`'s fused surface, or null when it is not fused.
-  const PointsWithNormals* Fused(int t) const;
+  const FusedFrame* Fused(int t) const;
   /// The encode's proxies.
   ProxyCache& proxies() { return proxies_; }
-  /// Drops the frames before `t` (a forward run is done with them).
+  /// Drops the frames before `t` (a forward run, or the next key group, is done with them).
   void DropBefore(int t);
 
  private:
   /// A frame's targets as made: each only where it was missing.
   struct Made {
     std::optional<FrameProxy> proxy;
-    std::optional<PointsWithNormals> fused;
+    std::optional<FusedFrame> fused;
   };
   struct InMaking {
     int frame = 0;
@@ -79,7 +81,7 @@ class TrackingTargets {
   const EncodeContext& ctx_;
   const EncodeContext quiet_;  ///< ctx_ without progress, for the other thread
   ProxyCache& proxies_;
-  std::map<int, PointsWithNormals> fused_;
+  std::map<int, FusedFrame> fused_;
   std::optional<InMaking> in_making_;
 };
 

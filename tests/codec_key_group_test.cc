@@ -544,12 +544,32 @@ TEST(KeyGroups, TrackingTargetsMadeAheadAreThoseMadeInTurn) {
     EXPECT_TRUE(same(ahead.Proxy(1).points, in_turn.Proxy(1).points));
     ASSERT_NE(ahead.Fused(1), nullptr);
     EXPECT_EQ(ahead.Fused(2), nullptr);
+    // Another frame asked for: the one in making is kept first. Frames dropped: the one in
+    // making among them too, and it may be started again.
     ASSERT_TRUE(ahead.StartMaking(2).ok());
+    ASSERT_TRUE(ahead.StartMaking(3).ok());
+    EXPECT_NE(ahead.Fused(2), nullptr);
+    ahead.DropBefore(4);
+    EXPECT_EQ(ahead.Fused(3), nullptr);
+    EXPECT_EQ(ahead_proxies.count(3), 0u);
+    ASSERT_TRUE(ahead.StartMaking(3).ok());
+    const StatusOr<TrackingData> made_again = ahead.DataOf(3);
+    ASSERT_TRUE(made_again.ok()) << made_again.status().ToString();
+    const StatusOr<TrackingData> made_in_turn = in_turn.DataOf(3);
+    ASSERT_TRUE(made_in_turn.ok()) << made_in_turn.status().ToString();
+    EXPECT_TRUE(same(made_again->points, made_in_turn->points));
   }
-  // Dropped while frame 2 was in making: its proxy is kept for the key groups after.
-  ASSERT_EQ(ahead_proxies.count(2), 1u);
-  ASSERT_TRUE(in_turn.DataOf(2).ok());
-  EXPECT_TRUE(same(ahead_proxies.at(2).points, in_turn.Proxy(2).points));
+  // A key frame's base from the fusion its tracking made is the base fused afresh.
+  ctx.lengths.detail_max_distance = 0.02f;
+  const StatusOr<std::vector<TriangleMesh>> frame_views = source->LoadFrame(1);
+  ASSERT_TRUE(frame_views.ok());
+  const StatusOr<TriangleMesh> reused =
+      MakeKeyFrameBase(ctx, *frame_views, in_turn.Proxy(1), &in_turn.Fused(1)->mesh);
+  const StatusOr<TriangleMesh> afresh = MakeKeyFrameBase(ctx, *frame_views, in_turn.Proxy(1));
+  ASSERT_TRUE(reused.ok() && afresh.ok());
+  EXPECT_GT(reused->vertex_count(), 100u);
+  EXPECT_TRUE(same(reused->positions, afresh->positions));
+  EXPECT_TRUE(reused->triangles == afresh->triangles);
 }
 
 TEST(KeyGroups, ASheetWhoseHoleGrowsEndsTheKeyGroupWhereACameraSeesThroughIt) {

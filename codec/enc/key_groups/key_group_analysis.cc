@@ -176,6 +176,7 @@ StatusOr<TriangleMesh> BaseOfKeyFrame(const EncodeContext& ctx, int frame, Track
   if (!proxies.count(frame)) {
     MESHVID_ASSIGN_OR_RETURN(proxies[frame], BuildProxy(ctx, views));
   }
+  targets->Collect(frame);
   const FusedFrame* fused = targets->Fused(frame);
   return MakeKeyFrameBase(ctx, views, proxies[frame], fused != nullptr ? &fused->mesh : nullptr);
 }

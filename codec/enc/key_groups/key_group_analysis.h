@@ -103,10 +103,10 @@ struct KeyGroupAnalysis {
 };
 
 /// The base of a key frame whose views are `views` and proxy `proxy`: fused from few points
-/// first (fast; `fused`, when given, is that fusion, FuseFrame's from
-/// tuning.base_fusion_points, made already), redone from the fusion's default number of points
-/// when that fails or explains too little of the frame; or the user's base mesh fitted to the
-/// frame.
+/// first (fast; `fused`, when given, is FuseFrame's fusion from tuning.base_fusion_points made
+/// already, used where that is the fast fusion), redone from the fusion's default number of
+/// points when that fails or explains too little of the frame; or the user's base mesh fitted
+/// to the frame.
 StatusOr<TriangleMesh> MakeKeyFrameBase(const EncodeContext& ctx,
                                         const std::vector<TriangleMesh>& views,
                                         const FrameProxy& proxy,
@@ -117,12 +117,13 @@ class TrackingTargets;
 /// Analyses the key group that starts at frame `start`: base, motion, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains). `targets`
 /// (tracking_targets.h) keeps the frames' proxies (its ProxyCache, `cache` below) and fused
-/// surfaces the next key group may need; the key frame's base starts from its fusion there. `hint`,
-/// the key group before's (KeyGroupAnalysis::hint), predicts the second frame's motion when its
-/// frame is the key frame. `base_made_ahead`, when given, is frame `start`'s base
-/// (MakeKeyFrameBase's, made on another thread: key_frame_ahead.h); it is used when `cache` holds
-/// the frame's proxy. With EncoderTuning::deform_backward_frames, `later_base_ahead`, when given,
-/// is asked for the later key frame's base (and puts its proxy in `cache`) before one is made.
+/// surfaces the next key group may need; the key frame's base starts from its fusion there, when it
+/// has one (MakeKeyFrameBase). `hint`, the key group before's (KeyGroupAnalysis::hint), predicts
+/// the second frame's motion when its frame is the key frame. `base_made_ahead`, when given, is
+/// frame `start`'s base (MakeKeyFrameBase's, made on another thread: key_frame_ahead.h); it is used
+/// when `cache` holds the frame's proxy. With EncoderTuning::deform_backward_frames,
+/// `later_base_ahead`, when given, is asked for the later key frame's base (and puts its proxy in
+/// `cache`) before one is made.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint,
     TrackingTargets* targets, std::optional<TriangleMesh> base_made_ahead = {},

@@ -10,11 +10,8 @@ TrackingTargets::TrackingTargets(const EncodeContext& ctx, ProxyCache* proxies)
     : ctx_(ctx), quiet_(WithoutProgress(ctx)), proxies_(*proxies) {}
 
 TrackingTargets::~TrackingTargets() {
-  if (!in_making_) return;
-  StatusOr<Made> made = in_making_->made.get();
-  if (made.ok() && made->proxy && proxies_.count(in_making_->frame) == 0) {
-    proxies_[in_making_->frame] = *std::move(made->proxy);
-  }
+  // Waited for, as the thread refers to this object; what it made is not needed any more.
+  if (in_making_) in_making_->made.wait();
 }
 
 bool TrackingTargets::Ready(int t) const {
@@ -42,27 +39,33 @@ void TrackingTargets::Keep(int t, Made made) {
   if (made.fused && fused_.count(t) == 0) fused_[t] = *std::move(made.fused);
 }
 
+void TrackingTargets::Collect(int t) {
+  if (!in_making_ || in_making_->frame != t) return;
+  std::future<StatusOr<Made>> making = std::move(in_making_->made);
+  in_making_.reset();
+  StatusOr<Made> made = making.get();
+  if (made.ok()) Keep(t, *std::move(made));
+}
+
 Status TrackingTargets::StartMaking(int t) {
-  if (t < 0 || t >= ctx_.end || Ready(t) || in_making_) return Status::Ok();
+  if (t < 0 || t >= ctx_.end || Ready(t)) return Status::Ok();
+  if (in_making_) {
+    if (in_making_->frame == t) return Status::Ok();
+    Collect(in_making_->frame);  // another frame, kept before this one starts
+  }
   // The views are loaded on this thread: the frame source is not made for several.
   MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
   const bool proxy = proxies_.count(t) == 0;
   const bool fused = ctx_.options.tuning.deform_track_fused && fused_.count(t) == 0;
-  in_making_.emplace();
-  in_making_->frame = t;
-  in_making_->made = std::async(std::launch::async, [this, views = std::move(views), proxy, fused] {
-    return Make(quiet_, views, proxy, fused);
-  });
+  std::future<StatusOr<Made>> made = std::async(
+      std::launch::async,
+      [this, views = std::move(views), proxy, fused] { return Make(quiet_, views, proxy, fused); });
+  in_making_.emplace(InMaking{t, std::move(made)});
   return Status::Ok();
 }
 
 StatusOr<TrackingData> TrackingTargets::DataOf(int t) {
-  if (in_making_ && in_making_->frame == t) {
-    StatusOr<Made> made = in_making_->made.get();
-    in_making_.reset();
-    if (!made.ok()) return made.status();
-    Keep(t, *std::move(made));
-  }
+  Collect(t);
   const bool track_fused = ctx_.options.tuning.deform_track_fused;
   if (!Ready(t)) {
     // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
@@ -85,6 +88,10 @@ const FusedFrame* TrackingTargets::Fused(int t) const {
 }
 
 void TrackingTargets::DropBefore(int t) {
+  if (in_making_ && in_making_->frame < t) {
+    in_making_->made.wait();
+    in_making_.reset();
+  }
   proxies_.erase(proxies_.begin(), proxies_.lower_bound(t));
   fused_.erase(fused_.begin(), fused_.lower_bound(t));
 }

@@ -24,27 +24,32 @@ struct FusedFrame {
   std::vector<Eigen::Vector3f> normals;  ///< the mesh's vertex normals
 };
 
-/// The tracking targets of an encode's frames, each made once: a frame's proxy goes to the
-/// encode's ProxyCache, its fused surface stays here, and the key groups share both (the frame
-/// that ends a key group is the next one's key frame, whose base starts from the same fusion;
-/// a first-frame key group after a later key frame failed fuses no frame again). The frame a
-/// key group tracks next can be made on another
-/// thread (StartMaking) while this one solves the frame before or makes the base: the solve
-/// leaves a core idle at times and a base's decimation runs on one, while a frame's proxy
-/// decimation and fusion are most of a tracked frame's time. What is made there is what would
-/// be made here, so the file is the same either way.
+/// The tracking targets of an encode's frames: a frame's proxy goes to the encode's
+/// ProxyCache, its fused surface stays here, and the key groups share both (the frame that
+/// ends a key group is the next one's key frame, whose base starts from the same fusion; a
+/// first-frame key group after a later key frame failed fuses its frames again only where
+/// they were dropped). One frame at a time can be made on another thread (StartMaking) while
+/// this one solves the frame before or makes a base: the solve leaves a core idle at times and
+/// a base's decimation runs on one, while a frame's proxy decimation and fusion are most of a
+/// tracked frame's time. What is made there is what would be made here, so the file is the
+/// same either way. Made there, a frame reports no progress; a cancel waits for it.
 class TrackingTargets {
  public:
   /// `ctx` and `proxies` must outlive this object.
   TrackingTargets(const EncodeContext& ctx, ProxyCache* proxies);
-  /// Waits for a frame still in making; its proxy, when made, is kept in the cache.
+  /// Waits for a frame still in making.
   ~TrackingTargets();
   TrackingTargets(const TrackingTargets&) = delete;
   TrackingTargets& operator=(const TrackingTargets&) = delete;
 
   /// Starts making frame `t`'s targets on another thread, from its views loaded here. Nothing
-  /// when they are made, another frame is in making, or `t` is not in the encode.
+  /// when they are made or in making, or `t` is not in the encode; another frame in making is
+  /// collected first (Collect).
   Status StartMaking(int t);
+
+  /// Waits for frame `t` when it is in making and keeps what was made (nothing when making it
+  /// failed: the frame is made again in turn, which meets the error itself).
+  void Collect(int t);
 
   /// What frame `t` is tracked to: its fused surface (tuning.deform_track_fused) or its
   /// proxy's points; made here unless made already or in making (then waited for).
@@ -52,11 +57,13 @@ class TrackingTargets {
 
   /// Frame `t`'s proxy, made by DataOf(t) or earlier.
   const FrameProxy& Proxy(int t) const { return proxies_.at(t); }
-  /// Frame `t`'s fused surface, or null when it is not fused.
+  /// Frame `t`'s fused surface, or null when it is not fused (Collect it first where it may be
+  /// in making).
   const FusedFrame* Fused(int t) const;
   /// The encode's proxies.
   ProxyCache& proxies() { return proxies_; }
-  /// Drops the frames before `t` (a forward run, or the next key group, is done with them).
+  /// Drops the frames before `t` (a forward run, or the next key group, is done with them),
+  /// and one in making among them.
   void DropBefore(int t);
 
  private:

@@ -288,8 +288,7 @@ Status TrackDeformedKeyGroup(const EncodeContext& ctx, const BaseTopology& topol
   tracks.insert(tracks.end(), std::make_move_iterator(forwards.begin()),
                 std::make_move_iterator(forwards.end()));
   summary.frames = static_cast<int>(tracks.size());
-  ProxyCache& proxies = targets->proxies();
-  proxies.erase(proxies.begin(), proxies.lower_bound(first + summary.frames));
+  targets->DropBefore(first + summary.frames);
   summary.rigid_groups = nodes;
   if (options.tuning.deform_rigid_group_factor > 0) {
     const RigidNodeGroups groups = FindRigidNodeGroups(

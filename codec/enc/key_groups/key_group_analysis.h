@@ -116,14 +116,14 @@ class TrackingTargets;
 
 /// Analyses the key group that starts at frame `start`: base, motion, tracks; and, when
 /// `may_cut`, where it ends (the first frame its tracked base no longer explains). `targets`
-/// (tracking_targets.h) keeps the frames' proxies (its ProxyCache, `cache` below) and fused
-/// surfaces the next key group may need; the key frame's base starts from its fusion there, when it
-/// has one (MakeKeyFrameBase). `hint`, the key group before's (KeyGroupAnalysis::hint), predicts
-/// the second frame's motion when its frame is the key frame. `base_made_ahead`, when given, is
-/// frame `start`'s base (MakeKeyFrameBase's, made on another thread: key_frame_ahead.h); it is used
-/// when `cache` holds the frame's proxy. With EncoderTuning::deform_backward_frames,
-/// `later_base_ahead`, when given, is asked for the later key frame's base (and puts its proxy in
-/// `cache`) before one is made.
+/// (tracking_targets.h) keeps the frames' proxies and fused surfaces the next key group may
+/// need; the key frame's base starts from its fusion there, when it has one
+/// (MakeKeyFrameBase). `hint`, the key group before's (KeyGroupAnalysis::hint), predicts the
+/// second frame's motion when its frame is the key frame. `base_made_ahead`, when given, is
+/// frame `start`'s base (MakeKeyFrameBase's, made on another thread: key_frame_ahead.h); it is
+/// used when `targets` holds the frame's proxy. With EncoderTuning::deform_backward_frames,
+/// `later_base_ahead`, when given, is asked for the later key frame's base (and puts its proxy
+/// in `targets`' proxies) before one is made.
 StatusOr<KeyGroupAnalysis> AnalyseKeyGroup(
     const EncodeContext& ctx, int start, bool may_cut, const MotionHint& hint,
     TrackingTargets* targets, std::optional<TriangleMesh> base_made_ahead = {},

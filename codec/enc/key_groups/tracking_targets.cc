@@ -14,18 +14,19 @@ TrackingTargets::~TrackingTargets() {
   if (in_making_) in_making_->made.wait();
 }
 
-bool TrackingTargets::Ready(int t) const {
-  return proxies_.count(t) > 0 && (!ctx_.options.tuning.deform_track_fused || fused_.count(t) > 0);
+TrackingTargets::Missing TrackingTargets::MissingOf(int t) const {
+  return {.proxy = proxies_.count(t) == 0,
+          .fused = ctx_.options.tuning.deform_track_fused && fused_.count(t) == 0};
 }
 
 StatusOr<TrackingTargets::Made> TrackingTargets::Make(const EncodeContext& ctx,
                                                       const std::vector<TriangleMesh>& views,
-                                                      bool proxy, bool fused) {
+                                                      Missing missing) {
   Made made;
-  if (proxy) {
+  if (missing.proxy) {
     MESHVID_ASSIGN_OR_RETURN(made.proxy, BuildProxy(ctx, views));
   }
-  if (fused) {
+  if (missing.fused) {
     FusedFrame& kept = made.fused.emplace();
     MESHVID_ASSIGN_OR_RETURN(kept.mesh,
                              FuseFrame(ctx, views, ctx.options.tuning.base_fusion_points));
@@ -48,33 +49,30 @@ void TrackingTargets::Collect(int t) {
 }
 
 Status TrackingTargets::StartMaking(int t) {
-  if (t < 0 || t >= ctx_.end || Ready(t)) return Status::Ok();
+  const Missing missing = MissingOf(t);
+  if (t < 0 || t >= ctx_.end || !missing.any()) return Status::Ok();
   if (in_making_) {
     if (in_making_->frame == t) return Status::Ok();
     Collect(in_making_->frame);  // another frame, kept before this one starts
   }
   // The views are loaded on this thread: the frame source is not made for several.
   MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
-  const bool proxy = proxies_.count(t) == 0;
-  const bool fused = ctx_.options.tuning.deform_track_fused && fused_.count(t) == 0;
   std::future<StatusOr<Made>> made = std::async(
       std::launch::async,
-      [this, views = std::move(views), proxy, fused] { return Make(quiet_, views, proxy, fused); });
+      [this, views = std::move(views), missing] { return Make(quiet_, views, missing); });
   in_making_.emplace(InMaking{t, std::move(made)});
   return Status::Ok();
 }
 
 StatusOr<TrackingData> TrackingTargets::DataOf(int t) {
   Collect(t);
-  const bool track_fused = ctx_.options.tuning.deform_track_fused;
-  if (!Ready(t)) {
+  if (const Missing missing = MissingOf(t); missing.any()) {
     // The frame's views, loaded once for whichever of the proxy and the fused target needs them.
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, ctx_.source.LoadFrame(t));
-    MESHVID_ASSIGN_OR_RETURN(
-        Made made, Make(ctx_, views, proxies_.count(t) == 0, track_fused && fused_.count(t) == 0));
+    MESHVID_ASSIGN_OR_RETURN(Made made, Make(ctx_, views, missing));
     Keep(t, std::move(made));
   }
-  if (track_fused) {
+  if (ctx_.options.tuning.deform_track_fused) {
     const FusedFrame& fused = fused_.at(t);
     return TrackingData{fused.mesh.positions, fused.normals};
   }

@@ -77,11 +77,18 @@ class TrackingTargets {
     std::future<StatusOr<Made>> made;
   };
 
-  /// Whether frame t's proxy, and its fused surface where frames are fused, are made.
-  bool Ready(int t) const;
-  /// Frame t's missing targets, made from its views with `ctx`.
+  /// Which of a frame's targets are not made yet.
+  struct Missing {
+    bool proxy = false;
+    bool fused = false;  ///< only where frames are fused for tracking
+    bool any() const { return proxy || fused; }
+  };
+
+  /// Which of frame t's targets are not made yet.
+  Missing MissingOf(int t) const;
+  /// Frame t's `missing` targets, made from its views with `ctx`.
   static StatusOr<Made> Make(const EncodeContext& ctx, const std::vector<TriangleMesh>& views,
-                             bool proxy, bool fused);
+                             Missing missing);
   /// Keeps what was made for frame t.
   void Keep(int t, Made made);
 

@@ -16,6 +16,8 @@
 #include "codec/enc/options.h"
 #include "format/crc32c.h"
 #include "tests/test_util.h"
+#include "tools/io/capture.h"
+#include "tools/io/mesh_io.h"
 #include "tools/sim/ground_truth.h"
 #include "tools/sim/scenes.h"
 
@@ -35,6 +37,22 @@ struct RecordedFile {
 /// another kind may write a third file and fail here. A change of the encoder that changes its
 /// files on purpose records the new ones here.
 constexpr RecordedFile kRecordedFiles[] = {{17263, 0x8ad6d91a}, {17315, 0x46262709}};
+
+/// Simulates the arm-block at 160 x 120 pixels (`frames` frames, `views` views) into
+/// `dir`/cap and encodes it at the defaults into `dir`/`file`; returns the encode's command
+/// line up to its output file, for encoding the capture again.
+std::string SimulateAndEncodeSmallArmBlock(const testing::TempDir& dir, int frames, int views,
+                                           const std::string& file) {
+  testing::CliRun run = testing::RunMeshvid(
+      "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:" + std::to_string(frames) +
+          " --views " + std::to_string(views) + " --res 160x120 -q",
+      dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const std::string encode = "encode '" + dir.File("cap/manifest.json") + "' -q -o ";
+  run = testing::RunMeshvid(encode + "'" + dir.File(file) + "'", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  return encode;
+}
 
 TEST(EncodeCliTest, HelpListsTheUsersOptionsAndTuneHelpEveryKnob) {
   MESHVID_REQUIRE_CLI();
@@ -64,17 +82,12 @@ TEST(EncodeCliTest, HelpListsTheUsersOptionsAndTuneHelpEveryKnob) {
 TEST(EncodeCliTest, TheFileIsTheSameWhateverTheMachinesCpu) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
-  testing::CliRun run = testing::RunMeshvid("simulate scene:arm-block -o '" + dir.File("cap") +
-                                                "' --frames 0:3 --views 3 --res 160x120 -q",
-                                            dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string encode = "encode '" + dir.File("cap/manifest.json") + "' -q -o ";
-  run = testing::RunMeshvid(encode + "'" + dir.File("here.mvid") + "'", dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 3, 3, "here.mvid");
   const char* previous = std::getenv("GLIBC_TUNABLES");
   const std::string kept = previous != nullptr ? previous : "";
   setenv("GLIBC_TUNABLES", "glibc.cpu.hwcaps=-AVX2,-FMA,-AVX,-FMA4,-AVX512F", 1);
-  run = testing::RunMeshvid(encode + "'" + dir.File("older-cpu.mvid") + "'", dir);
+  const testing::CliRun run =
+      testing::RunMeshvid(encode + "'" + dir.File("older-cpu.mvid") + "'", dir);
   if (previous != nullptr) {
     setenv("GLIBC_TUNABLES", kept.c_str(), 1);
   } else {
@@ -91,6 +104,36 @@ TEST(EncodeCliTest, TheFileIsTheSameWhateverTheMachinesCpu) {
                           }))
       << "another machine's bytes, or a changed encoder: " << here.size() << " bytes, CRC-32C 0x"
       << std::hex << crc;
+}
+
+// Colour in the views (here PLY red green blue) is read with the capture and does not move
+// the geometry: the file is the one the same capture without colour gives.
+TEST(EncodeCliTest, ColoursInTheViewsLeaveTheFileAsItWas) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 2, 2, "plain.mvid");
+  auto capture = CaptureSequence::Open(dir.File("cap/manifest.json"));
+  ASSERT_TRUE(capture.ok()) << capture.status().ToString();
+  for (int frame = 0; frame < (*capture)->frame_count(); ++frame) {
+    for (int view = 0; view < (*capture)->view_count(); ++view) {
+      const std::string& path = (*capture)->view_path(frame, view);
+      auto mesh = ReadMesh(path);
+      ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
+      for (std::size_t v = 0; v < mesh->vertex_count(); ++v) {
+        mesh->colours.emplace_back(v % 256, (v / 256) % 256, 40 * view);
+      }
+      ASSERT_TRUE(WriteMesh(path, *mesh).ok());
+    }
+  }
+  const auto coloured = (*capture)->LoadView(1, 1);
+  ASSERT_TRUE(coloured.ok()) << coloured.status().ToString();
+  ASSERT_EQ(coloured->colours.size(), coloured->vertex_count());
+  EXPECT_EQ(coloured->colours[300], Colour(300 % 256, 1, 40));
+  const testing::CliRun run =
+      testing::RunMeshvid(encode + "'" + dir.File("coloured.mvid") + "'", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(testing::ReadFile(dir.File("plain.mvid")),
+            testing::ReadFile(dir.File("coloured.mvid")));
 }
 
 TEST(EncodeCliTest, ExplainsBadInputAndLeavesNoFileBehind) {

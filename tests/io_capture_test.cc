@@ -179,7 +179,7 @@ TEST(CaptureManifestTest, BadFieldsNameTheManifestAndJsonPath) {
       {head + R"("frame_rte": 3, "views": [{}], "frames": [["a.ply"]]})",
        m + ": frame_rte is not a known field (known: format, version, frame_rate, units, "
            "coordinates, depth_jump_ratio, views, frames, pattern, frame_count, first_frame, "
-           "source)"},
+           "colour_frames, colour_pattern, source)"},
       {head + R"("frame_rate": -1, "views": [{}], "frames": [["a.ply"]]})",
        m + ": frame_rate must be > 0"},
       // A rate the .mvid writer refuses is refused here, before any file is read.

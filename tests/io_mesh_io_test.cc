@@ -59,11 +59,11 @@ TEST(ObjTest, RoundTripIsExactWithAndWithoutNormals) {
 TEST(ObjTest, CornerFormsNegativeIndicesAndIgnoredStatements) {
   const std::string text =
       "# comment\r\nmtllib a.mtl\no thing\ng group\ns 1\nusemtl red\n\n"
-      "v 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5 0.5 0.5\nv 0 1 0\n"
+      "v 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5\nv 0 1 0\n"
       "vt 0 0\nvt 1 0\nvt 1 1\n"
       "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 -1\n"
-      "f 1/1/1 2/2/2 3/3/3 4/1/4\n"     // quad -> (0,1,2), (0,2,3)
-      "f -4//1 -2//3 -1//4\r\n"         // relative to 4 vertices -> (0,2,3)
+      "f 1/1/1 2/2/2 3/3/3 4/1/4\n"  // quad -> (0,1,2), (0,2,3)
+      "f -4//1 -2//3 -1//4\r\n"      // relative to 4 vertices -> (0,2,3)
       "f 2/1 3/2 4/3   # trailing comment\n"
       "l 1 2\n";
   const auto read = ParseObjString(text);

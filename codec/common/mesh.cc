@@ -38,6 +38,10 @@ Status ValidateMesh(const TriangleMesh& mesh, std::string_view what) {
                           " has a NaN or infinite component");
     }
   }
+  if (!mesh.colours.empty() && mesh.colours.size() != mesh.positions.size()) {
+    return CorruptError(name + ": " + std::to_string(mesh.colours.size()) + " colours for " +
+                        std::to_string(n) + " vertices");
+  }
   return Status::Ok();
 }
 
@@ -50,7 +54,14 @@ Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh) {
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst) {
   const bool keep_normals = (dst->positions.empty() || !dst->normals.empty()) &&
                             !src.normals.empty();
+  const bool keep_colours =
+      (dst->positions.empty() || !dst->colours.empty()) && !src.colours.empty();
   const auto offset = static_cast<std::uint32_t>(dst->positions.size());
+  if (keep_colours) {
+    dst->colours.insert(dst->colours.end(), src.colours.begin(), src.colours.end());
+  } else {
+    dst->colours.clear();
+  }
   dst->positions.insert(dst->positions.end(), src.positions.begin(), src.positions.end());
   if (keep_normals) {
     dst->normals.insert(dst->normals.end(), src.normals.begin(), src.normals.end());
@@ -123,13 +134,16 @@ void RemoveUnreferencedVertices(TriangleMesh* mesh) {
   }
   std::vector<Eigen::Vector3f> positions(next);
   std::vector<Eigen::Vector3f> normals(mesh->normals.empty() ? 0 : next);
+  std::vector<Colour> colours(mesh->colours.empty() ? 0 : next);
   for (std::size_t i = 0; i < remap.size(); ++i) {
     if (remap[i] == kUnused) continue;
     positions[remap[i]] = mesh->positions[i];
     if (!normals.empty()) normals[remap[i]] = mesh->normals[i];
+    if (!colours.empty()) colours[remap[i]] = mesh->colours[i];
   }
   mesh->positions = std::move(positions);
   mesh->normals = std::move(normals);
+  mesh->colours = std::move(colours);
 }
 
 std::size_t SplitNonManifoldVertices(TriangleMesh* mesh) {
@@ -181,6 +195,7 @@ std::size_t SplitNonManifoldVertices(TriangleMesh* mesh) {
         copy = static_cast<std::uint32_t>(mesh->positions.size());
         mesh->positions.push_back(mesh->positions[v]);
         if (!mesh->normals.empty()) mesh->normals.push_back(mesh->normals[v]);
+        if (!mesh->colours.empty()) mesh->colours.push_back(mesh->colours[v]);
         copies.emplace_back(r, copy);
         ++added;
       } else {

@@ -18,12 +18,17 @@ namespace meshvid {
 /// Three vertex indices, counter-clockwise seen from the outside.
 using Triangle = Eigen::Matrix<std::uint32_t, 3, 1>;
 
+/// A vertex's colour: red, green and blue, 8 bits each (sRGB, as capture files store it).
+using Colour = Eigen::Matrix<std::uint8_t, 3, 1>;
+
 /// An indexed triangle mesh in single precision. `normals` is optional: empty, or one unit
 /// normal per position.
 struct TriangleMesh {
   std::vector<Eigen::Vector3f> positions;
   std::vector<Triangle> triangles;
   std::vector<Eigen::Vector3f> normals;
+  /// Per-vertex colours, as the capture's files give them: empty, or one per vertex.
+  std::vector<Colour> colours;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return triangles.size(); }
@@ -31,14 +36,16 @@ struct TriangleMesh {
 };
 
 /// Checks what every consumer of a mesh relies on: at least one triangle, every coordinate
-/// finite, every index in range, normals absent or one finite normal per vertex. `what` names the mesh in
+/// finite, every index in range, normals absent or one finite normal per vertex, colours absent
+/// or one per vertex. `what` names the mesh in
 /// the message (usually its file).
 Status ValidateMesh(const TriangleMesh& mesh, std::string_view what);
 
 /// Axis-aligned bounding box of the positions (empty box for an empty mesh).
 Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh);
 
-/// Appends `src` to `dst`, offsetting its indices. Normals are kept only if both have them.
+/// Appends `src` to `dst`, offsetting its indices. Normals and colours are each kept only if
+/// both have them.
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);
 
 /// The one-ring of each vertex of `mesh`, sorted, without duplicates.
@@ -66,9 +73,9 @@ void RemoveUnreferencedVertices(TriangleMesh* mesh);
 
 /// Gives each fan of triangles around a vertex its own vertex: where two or more fans touch
 /// at one vertex only (a contour's sheets meeting at a grid point), all but the first get a
-/// copy of it, appended (normals copied too). Edges are left as they are. Mesh coders (Draco's
-/// edgebreaker) split such vertices themselves, which breaks a vertex-indexed mapping.
-/// Returns the number of vertices added.
+/// copy of it, appended (normals and colours copied too). Edges are left as they are. Mesh
+/// coders (Draco's edgebreaker) split such vertices themselves, which breaks a vertex-indexed
+/// mapping. Returns the number of vertices added.
 std::size_t SplitNonManifoldVertices(TriangleMesh* mesh);
 
 }  // namespace meshvid

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -65,23 +66,26 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequence::Open(const std::stri
 Status CaptureSequence::CheckViewFiles(int first_frame, int end_frame) const {
   first_frame = std::max(first_frame, 0);
   end_frame = std::min(end_frame, frame_count());
-  int missing = 0;
+  int missing = 0, checked = 0;
   std::string first_missing;
   std::error_code error;
   for (int frame = first_frame; frame < end_frame; ++frame) {
     for (int view = 0; view < view_count(); ++view) {
-      const std::string& path = paths_[frame][view];
-      if (fs::is_regular_file(path, error)) continue;
-      if (missing++ == 0) {
-        first_missing =
-            path + " (frame " + std::to_string(frame) + ", view " + std::to_string(view) + ")";
+      for (const std::string& path : {paths_[frame][view], colour_path(frame, view)}) {
+        if (path.empty()) continue;
+        ++checked;
+        if (fs::is_regular_file(path, error)) continue;
+        if (missing++ == 0) {
+          first_missing =
+              path + " (frame " + std::to_string(frame) + ", view " + std::to_string(view) + ")";
+        }
       }
     }
   }
   if (missing == 0) return Status::Ok();
   const bool every_frame = first_frame == 0 && end_frame == frame_count();
   return NotFoundError(source_ + ": " + std::to_string(missing) + " of the " +
-                       std::to_string((end_frame - first_frame) * view_count()) + " view files" +
+                       std::to_string(checked) + " view files" +
                        (every_frame ? std::string()
                                     : " of frames " + std::to_string(first_frame) + ".." +
                                           std::to_string(end_frame - 1)) +
@@ -106,7 +110,7 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequence::OpenWithoutChecking(
 
 StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::Make(
     const std::string& source, CaptureInfo info, std::vector<std::vector<std::string>> paths,
-    std::vector<Eigen::Isometry3d> poses) {
+    std::vector<Eigen::Isometry3d> poses, std::vector<std::vector<std::string>> colour_paths) {
   const int view_count = static_cast<int>(info.views.size());
   if (view_count == 0) return InvalidArgumentError(source + ": the capture has no view");
   if (paths.empty()) return InvalidArgumentError(source + ": the capture has no frame");
@@ -121,11 +125,27 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::Make(
       }
     }
   }
+  if (!colour_paths.empty() && colour_paths.size() != paths.size()) {
+    return InvalidArgumentError(source + ": colour images for " +
+                                std::to_string(colour_paths.size()) + " frames, but " +
+                                std::to_string(paths.size()) + " frames");
+  }
+  for (std::size_t frame = 0; frame < colour_paths.size(); ++frame) {
+    for (int view = 0; view < view_count; ++view) {
+      const std::string& colour = colour_paths[frame].at(view);
+      if (!colour.empty() && !IsDepthImagePath(paths[frame][view])) {
+        return InvalidArgumentError(
+            source + ": colour image " + colour + " goes with " + paths[frame][view] +
+            ", which is not a PNG depth image; a mesh file carries its own vertex colours");
+      }
+    }
+  }
   auto capture = std::make_unique<CaptureSequence>();
   capture->source_ = source;
   info.frame_count = static_cast<int>(paths.size());
   capture->info_ = std::move(info);
   capture->paths_ = std::move(paths);
+  capture->colour_paths_ = std::move(colour_paths);
   capture->view_poses_ = std::move(poses);
   return capture;
 }
@@ -218,6 +238,11 @@ const std::string& CaptureSequence::view_path(int frame, int view) const {
   return paths_.at(frame).at(view);
 }
 
+const std::string& CaptureSequence::colour_path(int frame, int view) const {
+  static const std::string kNone;
+  return colour_paths_.empty() ? kNone : colour_paths_.at(frame).at(view);
+}
+
 StatusOr<TriangleMesh> CaptureSequence::LoadView(int frame, int view) const {
   if (frame < 0 || frame >= frame_count()) {
     return InvalidArgumentError("frame " + std::to_string(frame) +
@@ -240,9 +265,15 @@ StatusOr<TriangleMesh> CaptureSequence::LoadView(int frame, int view) const {
       return InvalidArgumentError(path + ": a depth image needs its view's intrinsics");
     }
     MESHVID_ASSIGN_OR_RETURN(DepthImage image, ReadDepthPng(path));
+    const std::string& colour_file = colour_path(frame, view);
+    std::optional<ColourImage> colour;
+    if (!colour_file.empty()) {
+      MESHVID_ASSIGN_OR_RETURN(colour, ReadColourPng(colour_file));
+    }
     MESHVID_ASSIGN_OR_RETURN(
         mesh, MeshDepthImage(image, *calibration.intrinsics, capture_view.depth_scale,
-                             calibration.world_from_camera, info_.meshing, path));
+                             calibration.world_from_camera, info_.meshing, path,
+                             colour ? &*colour : nullptr, colour_file));
   } else {
     StatusOr<TriangleMesh> read = ReadMesh(path);
     if (!read.ok()) {

@@ -63,7 +63,13 @@ class CaptureSequence {
   int view_count() const { return static_cast<int>(info_.views.size()); }
   /// The file of view `view` at frame `frame`.
   const std::string& view_path(int frame, int view) const;
-  /// Loads one view's mesh in world coordinates; validated.
+  /// The colour image beside the depth image of view `view` at frame `frame`; empty for none.
+  const std::string& colour_path(int frame, int view) const;
+  /// True if some view file comes with a colour image (manifest `colour_frames` or
+  /// `colour_pattern`).
+  bool has_colour_images() const { return !colour_paths_.empty(); }
+  /// Loads one view's mesh in world coordinates, with per-vertex colours where the view's
+  /// file or colour image gives them; validated.
   StatusOr<TriangleMesh> LoadView(int frame, int view) const;
   /// Loads all views of a frame, in view order.
   StatusOr<std::vector<TriangleMesh>> LoadFrame(int frame) const;
@@ -78,6 +84,9 @@ class CaptureSequence {
   /// Per frame, per view: file path; and per view an extra pose (Stanford .conf), applied
   /// after the extrinsics.
   std::vector<std::vector<std::string>> paths_;
+  /// Per frame, per view: the colour image beside a depth image ("" for none); empty when
+  /// no view has one.
+  std::vector<std::vector<std::string>> colour_paths_;
   std::vector<Eigen::Isometry3d> view_poses_;
 };
 
@@ -98,9 +107,12 @@ class CaptureWindow {
 };
 
 /// Writes `manifest.json` for a capture whose view files already exist (used by the
-/// simulator). `paths[frame][view]` may be relative to the manifest's directory.
+/// simulator). `paths[frame][view]` may be relative to the manifest's directory;
+/// `colour_paths`, empty or shaped as `paths` ("" for a view without one), the colour images
+/// beside depth images.
 Status WriteCaptureManifest(const std::string& manifest_path, const CaptureInfo& info,
-                            const std::vector<std::vector<std::string>>& paths);
+                            const std::vector<std::vector<std::string>>& paths,
+                            const std::vector<std::vector<std::string>>& colour_paths = {});
 
 }  // namespace meshvid
 

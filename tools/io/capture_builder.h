@@ -20,11 +20,13 @@ class CaptureSequenceBuilder {
   static StatusOr<std::unique_ptr<CaptureSequence>> FromPattern(const std::string& pattern);
   /// Reads a Stanford `.conf` file.
   static StatusOr<std::unique_ptr<CaptureSequence>> FromConf(const std::string& path);
-  /// Assembles a capture and checks that every file exists and that depth images have
-  /// intrinsics; `source` names the input in messages. `poses` may be empty (identity).
+  /// Assembles a capture and checks that depth images have intrinsics and that colour
+  /// images go with depth images; `source` names the input in messages. `poses` may be empty
+  /// (identity); `colour_paths` empty, or shaped as `paths` with "" for no colour image.
   static StatusOr<std::unique_ptr<CaptureSequence>> Make(
       const std::string& source, CaptureInfo info, std::vector<std::vector<std::string>> paths,
-      std::vector<Eigen::Isometry3d> poses);
+      std::vector<Eigen::Isometry3d> poses,
+      std::vector<std::vector<std::string>> colour_paths = {});
 };
 
 /// "v0", "v1", ...: the name of a view that has none.

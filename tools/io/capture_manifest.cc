@@ -229,6 +229,61 @@ class ManifestReader {
     return paths;
   }
 
+  /// The colour images beside depth images: "colour_frames" (shaped as "frames", null for a
+  /// view without one) or "colour_pattern" (expanded as "pattern" is); none without either.
+  StatusOr<std::vector<std::vector<std::string>>> ColourPaths(const Json& root, int view_count,
+                                                              int frame_count) const {
+    std::vector<std::vector<std::string>> paths;
+    if (root.contains("colour_frames") && root.contains("colour_pattern")) {
+      return Error("colour_frames", "and colour_pattern must not both be given");
+    }
+    if (root.contains("colour_frames")) {
+      const Json& frames = root["colour_frames"];
+      if (!frames.is_array() || static_cast<int>(frames.size()) != frame_count) {
+        return Error("colour_frames",
+                     "must be an array of per-frame colour image lists, one "
+                     "for each of the " +
+                         std::to_string(frame_count) + " frames");
+      }
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        const std::string at = "colour_frames[" + std::to_string(f) + "]";
+        if (!frames[f].is_array() || static_cast<int>(frames[f].size()) != view_count) {
+          return Error(at, "must be an array of " + std::to_string(view_count) +
+                               " colour image names (null for a view without one)");
+        }
+        std::vector<std::string> row;
+        for (std::size_t v = 0; v < frames[f].size(); ++v) {
+          const Json& name = frames[f][v];
+          if (name.is_null()) {
+            row.emplace_back();
+          } else if (name.is_string() && !name.get<std::string>().empty()) {
+            row.push_back(ResolveBesides(manifest_, name.get<std::string>()));
+          } else {
+            return Error(at + "[" + std::to_string(v) + "]", "must be a file name or null");
+          }
+        }
+        paths.push_back(std::move(row));
+      }
+    } else if (root.contains("colour_pattern")) {
+      if (!root.contains("pattern")) {
+        return Error("colour_pattern", "goes with pattern; with frames, give colour_frames");
+      }
+      if (!root["colour_pattern"].is_string()) return Error("colour_pattern", "must be a string");
+      StatusOr<FilePattern> pattern =
+          FilePattern::Parse(ResolveBesides(manifest_, root["colour_pattern"].get<std::string>()));
+      if (!pattern.ok()) {
+        return Error("colour_pattern", "is invalid: " + pattern.status().message());
+      }
+      const int first_frame = root.value("first_frame", 0);  // checked with pattern
+      for (int f = 0; f < frame_count; ++f) {
+        std::vector<std::string> row;
+        for (int v = 0; v < view_count; ++v) row.push_back(pattern->Expand(first_frame + f, v));
+        paths.push_back(std::move(row));
+      }
+    }
+    return paths;
+  }
+
   StatusOr<std::unique_ptr<CaptureSequence>> Read() const {
     std::ifstream in(manifest_);
     if (!in) return NotFoundError(manifest_ + ": cannot open the capture manifest");
@@ -238,7 +293,8 @@ class ManifestReader {
     MESHVID_RETURN_IF_ERROR(
         CheckKeys(root, "",
                   {"format", "version", "frame_rate", "units", "coordinates", "depth_jump_ratio",
-                   "views", "frames", "pattern", "frame_count", "first_frame", "source"}));
+                   "views", "frames", "pattern", "frame_count", "first_frame", "colour_frames",
+                   "colour_pattern", "source"}));
     if (!root.contains("format") || root["format"] != kFormatName) {
       return Error("format", std::string("must be \"") + kFormatName + "\"");
     }
@@ -281,8 +337,12 @@ class ManifestReader {
       }
       info.views.push_back(std::move(view));
     }
-    MESHVID_ASSIGN_OR_RETURN(auto paths, Paths(root, static_cast<int>(info.views.size())));
-    return CaptureSequenceBuilder::Make(manifest_, std::move(info), std::move(paths), {});
+    const int view_count = static_cast<int>(info.views.size());
+    MESHVID_ASSIGN_OR_RETURN(auto paths, Paths(root, view_count));
+    MESHVID_ASSIGN_OR_RETURN(auto colour_paths,
+                             ColourPaths(root, view_count, static_cast<int>(paths.size())));
+    return CaptureSequenceBuilder::Make(manifest_, std::move(info), std::move(paths), {},
+                                        std::move(colour_paths));
   }
 
  private:
@@ -297,7 +357,8 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::FromManifest(
 }
 
 Status WriteCaptureManifest(const std::string& manifest_path, const CaptureInfo& info,
-                            const std::vector<std::vector<std::string>>& paths) {
+                            const std::vector<std::vector<std::string>>& paths,
+                            const std::vector<std::vector<std::string>>& colour_paths) {
   if (info.views.empty()) return InvalidArgumentError(manifest_path + ": no view to write");
   if (paths.empty()) return InvalidArgumentError(manifest_path + ": no frame to write");
   Json root;
@@ -337,6 +398,28 @@ Status WriteCaptureManifest(const std::string& manifest_path, const CaptureInfo&
     frames.push_back(paths[f]);
   }
   root["frames"] = frames;
+  if (!colour_paths.empty()) {
+    if (colour_paths.size() != paths.size()) {
+      return InvalidArgumentError(manifest_path + ": colour images for " +
+                                  std::to_string(colour_paths.size()) + " frames, but " +
+                                  std::to_string(paths.size()) + " frames");
+    }
+    Json colour_frames = Json::array();
+    for (std::size_t f = 0; f < colour_paths.size(); ++f) {
+      if (colour_paths[f].size() != info.views.size()) {
+        return InvalidArgumentError(manifest_path + ": frame " + std::to_string(f) + " has " +
+                                    std::to_string(colour_paths[f].size()) +
+                                    " colour images but the capture has " +
+                                    std::to_string(info.views.size()) + " views");
+      }
+      Json row = Json::array();
+      for (const std::string& name : colour_paths[f]) {
+        row.push_back(name.empty() ? Json(nullptr) : Json(name));
+      }
+      colour_frames.push_back(row);
+    }
+    root["colour_frames"] = colour_frames;
+  }
   return WriteFileAtomically(manifest_path, root.dump(2) + "\n");
 }
 

@@ -1,5 +1,6 @@
 // The one mesh file I/O module of meshvid: PLY (ascii, binary little/big endian, float or
-// double, polygons triangulated, Stanford range grids) and Wavefront OBJ.
+// double, polygons triangulated, Stanford range grids) and Wavefront OBJ, with per-vertex
+// normals and colours.
 #ifndef MESHVID_TOOLS_IO_MESH_IO_H_
 #define MESHVID_TOOLS_IO_MESH_IO_H_
 
@@ -18,11 +19,16 @@ enum class PlyEncoding { kBinaryLittleEndian, kAscii };
 struct MeshWriteOptions {
   PlyEncoding ply_encoding = PlyEncoding::kBinaryLittleEndian;
   bool write_normals = true;  ///< write per-vertex normals when the mesh has them
+  /// Write per-vertex colours when the mesh has them (PLY uchar red green blue; OBJ
+  /// `v x y z r g b`, channels in [0, 1]).
+  bool write_colours = true;
 };
 
 /// Reads a .ply or .obj file (chosen by extension, case-insensitive). Polygons are fan
 /// triangulated. A PLY `range_grid` element (Stanford range scans) is triangulated as a
-/// range grid with TriangulateRangeGrid's defaults. The result passes ValidateMesh; every
+/// range grid with TriangulateRangeGrid's defaults (its colours, if any, are not kept).
+/// Per-vertex colours are read from PLY `red green blue` (uchar, ushort, or float and double
+/// in [0, 1]) and OBJ `v x y z r g b` (in [0, 1]). The result passes ValidateMesh; every
 /// error names the file and what is wrong (missing file, truncated data, bad index, NaN...).
 StatusOr<TriangleMesh> ReadMesh(const std::string& path);
 

@@ -1,6 +1,7 @@
 // Wavefront OBJ reader and writer: v, vn and f (v, v/vt, v//vn, v/vt/vn, negative indices),
 // polygons fan triangulated; everything else (vt, g, o, s, usemtl, mtllib, l...) ignored.
 #include <charconv>
+#include <cmath>
 #include <istream>
 #include <ostream>
 #include <string>
@@ -51,6 +52,8 @@ struct Corner {
 struct ObjContents {
   std::vector<Eigen::Vector3f> positions;
   std::vector<Eigen::Vector3f> normals;
+  std::vector<Colour> colours;  // one per `v` line when the first has one
+  std::size_t first_v_line = 0;
   std::vector<Triangle> triangles;
   std::vector<std::int64_t> corner_normals;  // 3 per triangle, -1 when the corner has none
   std::int64_t max_vertex = -1;              // largest positive vertex reference, and its line
@@ -58,6 +61,53 @@ struct ObjContents {
   std::int64_t max_normal = -1;
   std::size_t max_normal_line = 0;
 };
+
+// The colour after a `v` line's coordinates (`v x y z r g b`, channels in [0, 1]): false
+// without one (nothing, or a `w`); an error for channels outside [0, 1].
+StatusOr<bool> ParseVertexColour(std::string_view rest, const std::string& where, Colour* colour) {
+  std::string_view word;
+  float channels[3];
+  int count = 0;
+  while (NextWord(&rest, &word)) {
+    if (count == 3) return false;  // more than r g b: not a colour this reader knows
+    if (!ParseFloat(word, &channels[count])) {
+      return CorruptError(where + "'" + std::string(word) + "' is not a number");
+    }
+    ++count;
+  }
+  if (count != 3) return false;
+  for (int c = 0; c < 3; ++c) {
+    if (!(channels[c] >= 0.0f && channels[c] <= 1.0f)) {
+      return CorruptError(where + "vertex colour channel " + std::to_string(channels[c]) +
+                          " is outside [0, 1]");
+    }
+    (*colour)[c] = static_cast<std::uint8_t>(std::lround(channels[c] * 255.0f));
+  }
+  return true;
+}
+
+// Parses the `v` line `line_number` (`rest`: the text after the keyword) for its colour,
+// after its position was appended: every `v` line has one or none does.
+Status AddVertexColour(std::string_view rest, std::size_t line_number, const std::string& name,
+                       ObjContents* obj) {
+  std::string_view word;
+  for (int c = 0; c < 3; ++c) NextWord(&rest, &word);
+  const std::string where = name + ": line " + std::to_string(line_number) + ": ";
+  Colour colour;
+  MESHVID_ASSIGN_OR_RETURN(const bool has_colour, ParseVertexColour(rest, where, &colour));
+  if (obj->positions.size() == 1) obj->first_v_line = line_number;
+  const bool first_had = obj->positions.size() == 1 ? has_colour : !obj->colours.empty();
+  if (has_colour != first_had) {
+    return CorruptError(where +
+                        (has_colour ? "a vertex colour, but the 'v' line at line "
+                                    : "no vertex colour, but the 'v' line at line ") +
+                        std::to_string(obj->first_v_line) +
+                        (has_colour ? " has none" : " has one") +
+                        ": give every vertex a colour (v x y z r g b) or none");
+  }
+  if (has_colour) obj->colours.push_back(colour);
+  return Status::Ok();
+}
 
 // Resolves a 1-based or negative (relative) OBJ index; false for 0 or one before the start.
 bool ResolveIndex(std::string_view text, std::int64_t count, std::int64_t* index) {
@@ -167,6 +217,7 @@ StatusOr<TriangleMesh> ParseObj(std::string_view data, const std::string& name) 
                             ": NaN or infinite value");
       }
       (keyword == "v" ? obj.positions : obj.normals).push_back(v);
+      if (keyword == "v") MESHVID_RETURN_IF_ERROR(AddVertexColour(line, line_number, name, &obj));
     } else if (keyword == "f") {
       const std::string where = name + ": line " + std::to_string(line_number) + ": ";
       MESHVID_RETURN_IF_ERROR(ParseFace(line, line_number, where, &obj));
@@ -189,6 +240,7 @@ StatusOr<TriangleMesh> ParseObj(std::string_view data, const std::string& name) 
   TriangleMesh mesh;
   mesh.normals = ConsistentNormals(obj);
   mesh.positions = std::move(obj.positions);
+  mesh.colours = std::move(obj.colours);
   mesh.triangles = std::move(obj.triangles);
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, name));
   return mesh;
@@ -223,9 +275,22 @@ StatusOr<TriangleMesh> ReadObj(std::istream& in, const std::string& name) {
 Status WriteObj(std::ostream& out, const TriangleMesh& mesh, const MeshWriteOptions& options) {
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "mesh to write as OBJ"));
   const bool normals = options.write_normals && mesh.normals.size() == mesh.positions.size();
+  const bool colours = options.write_colours && mesh.colours.size() == mesh.positions.size();
   std::string text = "# written by meshvid\n";
-  text.reserve(mesh.positions.size() * (normals ? 70 : 35) + mesh.triangles.size() * 40);
-  for (const auto& p : mesh.positions) AppendVectorLine("v", p, &text);
+  text.reserve(mesh.positions.size() * (35 + (normals ? 35 : 0) + (colours ? 20 : 0)) +
+               mesh.triangles.size() * 40);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    AppendVectorLine("v", mesh.positions[i], &text);
+    if (colours) {
+      // The channels in [0, 1], as `v x y z r g b` readers expect.
+      text.pop_back();
+      for (int c = 0; c < 3; ++c) {
+        text += ' ';
+        AppendNumber(mesh.colours[i][c] / 255.0f, &text);
+      }
+      text += '\n';
+    }
+  }
   if (normals) {
     for (const auto& n : mesh.normals) AppendVectorLine("vn", n, &text);
   }

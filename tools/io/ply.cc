@@ -1,11 +1,13 @@
 // PLY body reader: ascii and binary (both endiannesses) element rows, vertex positions and
-// normals, polygon faces (fan triangulated) and Stanford range grids.
+// normals and colours, polygon faces (fan triangulated) and Stanford range grids.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -18,13 +20,30 @@ namespace meshvid::io_internal {
 namespace {
 
 // What the reader does with one property of an element.
-enum class Role : std::uint8_t { kSkip, kX, kY, kZ, kNx, kNy, kNz, kFaceIndices, kGridIndices };
+enum class Role : std::uint8_t {
+  kSkip,
+  kX,
+  kY,
+  kZ,
+  kNx,
+  kNy,
+  kNz,
+  kRed,
+  kGreen,
+  kBlue,
+  kFaceIndices,
+  kGridIndices
+};
+
+// Slots of a vertex row's values, one per role up to kBlue.
+constexpr int kVertexSlots = static_cast<int>(Role::kBlue) + 1;
 
 // What has been read from the body so far.
 struct PlyContents {
   bool has_vertex_element = false;
   std::vector<Eigen::Vector3f> positions;
   std::vector<Eigen::Vector3f> normals;
+  std::vector<Colour> colours;
   std::vector<Triangle> triangles;
   bool has_grid = false;
   std::vector<std::int32_t> grid;  // vertex index per cell, -1 for empty cells
@@ -57,6 +76,61 @@ double LoadAsDouble(const char* p, PlyType type, bool swap) {
     case PlyType::kFloat64: return LoadValue<double>(p, swap);
   }
   return 0;
+}
+
+// The vertex colour's properties: red, green and blue (or diffuse_red, ...), all three.
+std::optional<std::array<int, 3>> ColourProperties(const PlyElement& e) {
+  for (const char* prefix : {"", "diffuse_"}) {
+    const std::string p(prefix);
+    const std::array<int, 3> found = {e.FindProperty(p + "red"), e.FindProperty(p + "green"),
+                                      e.FindProperty(p + "blue")};
+    if (found[0] >= 0 && found[1] >= 0 && found[2] >= 0) return found;
+  }
+  return std::nullopt;
+}
+
+// A colour property's type must be one whose range is known: 8 or 16 bits, or floating point
+// in [0, 1].
+Status CheckColourTypes(const PlyElement& e, const std::string& name) {
+  const auto colour = ColourProperties(e);
+  if (!colour) return Status::Ok();
+  for (const int k : *colour) {
+    const PlyProperty& p = e.properties[k];
+    if (p.is_list ||
+        !(p.type == PlyType::kUint8 || p.type == PlyType::kUint16 || IsFloatType(p.type))) {
+      return UnsupportedError(name + ": vertex colour property '" + p.name +
+                              "' must be uchar, ushort, float or double");
+    }
+  }
+  return Status::Ok();
+}
+
+// One colour channel as 8 bits: uchar as it is, ushort from 16 bits, float from [0, 1].
+// False for a float outside [0, 1] (or NaN).
+bool ColourChannel(double value, PlyType type, std::uint8_t* channel) {
+  if (type == PlyType::kUint8) {
+    *channel = static_cast<std::uint8_t>(value);
+  } else if (type == PlyType::kUint16) {
+    *channel = static_cast<std::uint8_t>(std::lround(value / 257.0));
+  } else {
+    if (!(value >= 0.0 && value <= 1.0)) return false;
+    *channel = static_cast<std::uint8_t>(std::lround(value * 255.0));
+  }
+  return true;
+}
+
+// The colour of a vertex row from its values (indexed by Role), the channels' types in
+// `types`; an error naming the vertex for a float channel outside [0, 1].
+Status RowColour(const double* values, const std::array<PlyType, 3>& types, const std::string& name,
+                 std::uint64_t row, Colour* colour) {
+  for (int c = 0; c < 3; ++c) {
+    const double value = values[static_cast<int>(Role::kRed) + c];
+    if (!ColourChannel(value, types[c], &(*colour)[c])) {
+      return CorruptError(name + ": vertex " + std::to_string(row) + " has colour channel " +
+                          std::to_string(value) + ", outside [0, 1] for a float colour");
+    }
+  }
+  return Status::Ok();
 }
 
 // Converts a list count or index to an integer; false if it is not a whole number.
@@ -223,6 +297,10 @@ std::vector<Role> AssignRoles(const PlyElement& e) {
   const bool vertex = e.name == "vertex";
   const bool has_normals = vertex && e.FindProperty("nx") >= 0 && e.FindProperty("ny") >= 0 &&
                            e.FindProperty("nz") >= 0;
+  const auto colour = vertex ? ColourProperties(e) : std::nullopt;
+  if (colour) {
+    for (int c = 0; c < 3; ++c) roles[(*colour)[c]] = static_cast<Role>(int(Role::kRed) + c);
+  }
   bool face_list_found = false;
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     const PlyProperty& p = e.properties[k];
@@ -250,13 +328,18 @@ Status ReadElementRows(Source& src, const PlyElement& e, const std::vector<Role>
                        const std::string& name, PlyContents* out) {
   const bool vertex = e.name == "vertex";
   const bool has_normals = vertex && std::find(roles.begin(), roles.end(), Role::kNx) != roles.end();
+  const auto colour = vertex ? ColourProperties(e) : std::nullopt;
+  std::array<PlyType, 3> colour_types{};
+  if (colour) {
+    for (int c = 0; c < 3; ++c) colour_types[c] = e.properties[(*colour)[c]].type;
+  }
   // Vertex indices are checked here when the vertices came first (the usual order).
   const std::uint64_t index_limit = out->has_vertex_element
                                         ? out->positions.size()
                                         : std::numeric_limits<std::uint32_t>::max();
   for (std::uint64_t row = 0; row < e.count; ++row) {
     MESHVID_RETURN_IF_ERROR(src.BeginRow(e, row));
-    double values[7] = {0, 0, 0, 0, 0, 0, 0};
+    double values[kVertexSlots] = {};
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const PlyProperty& p = e.properties[k];
       const Role role = roles[k];
@@ -331,6 +414,10 @@ Status ReadElementRows(Source& src, const PlyElement& e, const std::vector<Role>
         out->normals.emplace_back(static_cast<float>(values[4]), static_cast<float>(values[5]),
                                   static_cast<float>(values[6]));
       }
+      if (colour) {
+        MESHVID_RETURN_IF_ERROR(
+            RowColour(values, colour_types, name, row, &out->colours.emplace_back()));
+      }
     }
   }
   return Status::Ok();
@@ -348,9 +435,14 @@ Status ReadFixedBinaryVertices(BinarySource& src, const PlyElement& e,
   std::vector<Field> fields;
   std::size_t offset = 0;
   bool has_normals = false;
+  const auto colour = ColourProperties(e);
+  std::array<PlyType, 3> colour_types{};
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     if (roles[k] != Role::kSkip) fields.push_back({offset, e.properties[k].type, static_cast<int>(roles[k])});
     has_normals = has_normals || roles[k] == Role::kNx;
+    if (roles[k] >= Role::kRed && roles[k] <= Role::kBlue) {
+      colour_types[int(roles[k]) - int(Role::kRed)] = e.properties[k].type;
+    }
     offset += PlyTypeSize(e.properties[k].type);
   }
   const std::size_t stride = offset;
@@ -358,8 +450,9 @@ Status ReadFixedBinaryVertices(BinarySource& src, const PlyElement& e,
   const bool swap = src.swap();
   out->positions.resize(e.count);
   if (has_normals) out->normals.resize(e.count);
+  if (colour) out->colours.resize(e.count);
   for (std::uint64_t i = 0; i < e.count; ++i, row += stride) {
-    double values[7] = {0, 0, 0, 0, 0, 0, 0};
+    double values[kVertexSlots] = {};
     for (const Field& f : fields) values[f.slot] = LoadAsDouble(row + f.offset, f.type, swap);
     Eigen::Vector3f& position = out->positions[i];
     position = Eigen::Vector3d(values[1], values[2], values[3]).cast<float>();
@@ -368,6 +461,9 @@ Status ReadFixedBinaryVertices(BinarySource& src, const PlyElement& e,
                           " has a NaN or infinite coordinate");
     }
     if (has_normals) out->normals[i] = Eigen::Vector3d(values[4], values[5], values[6]).cast<float>();
+    if (colour) {
+      MESHVID_RETURN_IF_ERROR(RowColour(values, colour_types, name, i, &out->colours[i]));
+    }
   }
   src.Advance(e.count * stride);
   return Status::Ok();
@@ -453,6 +549,7 @@ Status ReadBody(Source& src, const PlyHeader& header, const std::string& name,
         return UnsupportedError(name + ": " + std::to_string(e.count) +
                                 " vertices exceed the 32-bit index range");
       }
+      MESHVID_RETURN_IF_ERROR(CheckColourTypes(e, name));
       out->positions.reserve(e.count);
     } else if (e.name == "face" && !skipped) {
       out->triangles.reserve(out->triangles.size() + e.count);
@@ -507,6 +604,7 @@ StatusOr<TriangleMesh> ParsePly(std::string_view data, const std::string& name) 
     if (contents.triangles.empty()) return CorruptError(name + ": PLY has no faces");
     mesh.positions = std::move(contents.positions);
     mesh.normals = std::move(contents.normals);
+    mesh.colours = std::move(contents.colours);
     mesh.triangles = std::move(contents.triangles);
   }
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, name));

@@ -1,5 +1,5 @@
-// PLY writer (binary little-endian or ascii, float32 coordinates) and the stream front end of
-// the PLY reader.
+// PLY writer (binary little-endian or ascii, float32 coordinates, uchar colours) and the stream
+// front end of the PLY reader.
 #include <bit>
 #include <charconv>
 #include <cstring>
@@ -38,13 +38,15 @@ void AppendUint(std::uint32_t value, std::string* out) {
   out->append(buffer, result.ptr);
 }
 
-std::string PlyHeaderText(const TriangleMesh& mesh, bool normals, PlyEncoding encoding) {
+std::string PlyHeaderText(const TriangleMesh& mesh, bool normals, bool colours,
+                          PlyEncoding encoding) {
   std::string header = "ply\nformat ";
   header += encoding == PlyEncoding::kAscii ? "ascii" : "binary_little_endian";
   header += " 1.0\ncomment written by meshvid\nelement vertex ";
   header += std::to_string(mesh.positions.size());
   header += "\nproperty float x\nproperty float y\nproperty float z\n";
   if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (colours) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   header += "element face " + std::to_string(mesh.triangles.size()) +
             "\nproperty list uchar int vertex_indices\nend_header\n";
   return header;
@@ -55,10 +57,11 @@ std::string PlyHeaderText(const TriangleMesh& mesh, bool normals, PlyEncoding en
 Status WritePly(std::ostream& out, const TriangleMesh& mesh, const MeshWriteOptions& options) {
   MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, "mesh to write as PLY"));
   const bool normals = options.write_normals && mesh.normals.size() == mesh.positions.size();
-  std::string buffer = PlyHeaderText(mesh, normals, options.ply_encoding);
+  const bool colours = options.write_colours && mesh.colours.size() == mesh.positions.size();
+  std::string buffer = PlyHeaderText(mesh, normals, colours, options.ply_encoding);
   if (options.ply_encoding == PlyEncoding::kBinaryLittleEndian) {
     const std::size_t header_size = buffer.size();
-    const std::size_t vertex_bytes = normals ? 24 : 12;
+    const std::size_t vertex_bytes = (normals ? 24 : 12) + (colours ? 3 : 0);
     buffer.resize(header_size + mesh.positions.size() * vertex_bytes +
                   mesh.triangles.size() * 13);
     char* p = buffer.data() + header_size;
@@ -66,6 +69,9 @@ Status WritePly(std::ostream& out, const TriangleMesh& mesh, const MeshWriteOpti
       for (int c = 0; c < 3; ++c) p = StoreLittleEndian(mesh.positions[i][c], p);
       if (normals) {
         for (int c = 0; c < 3; ++c) p = StoreLittleEndian(mesh.normals[i][c], p);
+      }
+      if (colours) {
+        for (int c = 0; c < 3; ++c) *p++ = static_cast<char>(mesh.colours[i][c]);
       }
     }
     for (const Triangle& t : mesh.triangles) {
@@ -84,6 +90,12 @@ Status WritePly(std::ostream& out, const TriangleMesh& mesh, const MeshWriteOpti
         for (int c = 0; c < 3; ++c) {
           buffer += ' ';
           AppendFloat(mesh.normals[i][c], &buffer);
+        }
+      }
+      if (colours) {
+        for (int c = 0; c < 3; ++c) {
+          buffer += ' ';
+          AppendUint(mesh.colours[i][c], &buffer);
         }
       }
       buffer += '\n';

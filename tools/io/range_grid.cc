@@ -74,8 +74,12 @@ TriangleMesh TriangulateRangeGrid(const RangeGrid& grid, const RangeGridMeshing&
     index[i] = next++;
   }
   mesh.positions.resize(next);
+  const bool colours = grid.colours.size() == cells;
+  if (colours) mesh.colours.resize(next);
   for (std::size_t i = 0; i < cells; ++i) {
-    if (index[i] != kUnused) mesh.positions[index[i]] = p[i];
+    if (index[i] == kUnused) continue;
+    mesh.positions[index[i]] = p[i];
+    if (colours) mesh.colours[index[i]] = grid.colours[i];
   }
   for (Triangle& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) t[k] = index[t[k]];

@@ -17,6 +17,7 @@ struct RangeGrid {
   int height = 0;
   std::vector<Eigen::Vector3f> points;  ///< width * height positions (any frame)
   std::vector<float> depth;             ///< width * height distances along the view axis
+  std::vector<Colour> colours;          ///< empty, or width * height colours
 };
 
 /// The depth-jump rule deciding which grid triangles are kept.
@@ -28,8 +29,9 @@ struct RangeGridMeshing {
 
 /// Triangulates every grid cell whose corners are valid into two triangles (choosing the
 /// shorter diagonal), dropping triangles that break the depth-jump rule, then removes
-/// unreferenced samples. Triangles face the sensor (counter-clockwise seen from it, for a
-/// grid with rows going down and columns going right in the image). The result may be empty.
+/// unreferenced samples (the mesh keeps the grid's colours, if any). Triangles face the sensor
+/// (counter-clockwise seen from it, for a grid with rows going down and columns going right in the
+/// image). The result may be empty.
 TriangleMesh TriangulateRangeGrid(const RangeGrid& grid, const RangeGridMeshing& rule = {});
 
 }  // namespace meshvid

@@ -1,5 +1,6 @@
-// Fuzz target: Wavefront OBJ files (v, vn, f with v, v/vt, v//vn, v/vt/vn and negative
-// indices; polygons fan-triangulated) through ReadObj, as capture views and ground truth are read.
+// Fuzz target: Wavefront OBJ files (v with or without colour, vn, f with v, v/vt, v//vn,
+// v/vt/vn and negative indices; polygons fan-triangulated) through ReadObj, as capture views
+// and ground truth are read.
 // Invariants: clean errors; a mesh read passes ValidateMesh.
 #include <sstream>
 #include <string>

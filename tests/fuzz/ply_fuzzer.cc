@@ -1,5 +1,5 @@
 // Fuzz target: PLY files (ascii, binary little and big endian, float or double, polygons,
-// Stanford range grids) through ReadPly, as capture views are read.
+// vertex colours, Stanford range grids) through ReadPly, as capture views are read.
 // Invariants: clean errors; a mesh read passes ValidateMesh.
 #include <sstream>
 #include <string>

@@ -40,17 +40,23 @@ constexpr RecordedFile kRecordedFiles[] = {{17263, 0x8ad6d91a}, {17315, 0x462627
 
 /// Simulates the arm-block at 160 x 120 pixels (`frames` frames, `views` views) into
 /// `dir`/cap and encodes it at the defaults into `dir`/`file`; returns the encode's command
-/// line up to its output file, for encoding the capture again.
+/// line up to its output file, for encoding the capture again (empty after a failure).
 std::string SimulateAndEncodeSmallArmBlock(const testing::TempDir& dir, int frames, int views,
                                            const std::string& file) {
   testing::CliRun run = testing::RunMeshvid(
       "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:" + std::to_string(frames) +
           " --views " + std::to_string(views) + " --res 160x120 -q",
       dir);
-  EXPECT_EQ(run.exit_code, 0) << run.err;
+  if (run.exit_code != 0) {
+    ADD_FAILURE() << "simulate: " << run.err;
+    return {};
+  }
   const std::string encode = "encode '" + dir.File("cap/manifest.json") + "' -q -o ";
   run = testing::RunMeshvid(encode + "'" + dir.File(file) + "'", dir);
-  EXPECT_EQ(run.exit_code, 0) << run.err;
+  if (run.exit_code != 0) {
+    ADD_FAILURE() << "encode: " << run.err;
+    return {};
+  }
   return encode;
 }
 
@@ -83,6 +89,7 @@ TEST(EncodeCliTest, TheFileIsTheSameWhateverTheMachinesCpu) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
   const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 3, 3, "here.mvid");
+  ASSERT_FALSE(encode.empty());
   const char* previous = std::getenv("GLIBC_TUNABLES");
   const std::string kept = previous != nullptr ? previous : "";
   setenv("GLIBC_TUNABLES", "glibc.cpu.hwcaps=-AVX2,-FMA,-AVX,-FMA4,-AVX512F", 1);
@@ -112,6 +119,7 @@ TEST(EncodeCliTest, ColoursInTheViewsLeaveTheFileAsItWas) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
   const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 2, 2, "plain.mvid");
+  ASSERT_FALSE(encode.empty());
   auto capture = CaptureSequence::Open(dir.File("cap/manifest.json"));
   ASSERT_TRUE(capture.ok()) << capture.status().ToString();
   for (int frame = 0; frame < (*capture)->frame_count(); ++frame) {

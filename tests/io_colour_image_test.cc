@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,15 @@ TEST(ColourPngTest, RoundTripsAndReadsGreyAsRgb) {
   ASSERT_TRUE(read.ok()) << read.status().ToString();
   EXPECT_EQ(read->pixels,
             (std::vector<Colour>{Colour(0x12, 0x12, 0x12), Colour(0xff, 0xff, 0xff)}));
+  // A uniform grey image's file is smaller than a 1100th (deflate's limit) of its pixels
+  // expanded to RGB; the reader bounds the file by its rows as stored, so it is read.
+  DepthImage uniform{4000, 4000, std::vector<std::uint16_t>(4000 * 4000, 0x4000)};
+  ASSERT_TRUE(WriteDepthPng(dir.File("u.png"), uniform).ok());
+  const auto uniform_size = std::filesystem::file_size(dir.File("u.png"));
+  EXPECT_LT(uniform_size, 4000u * 4000u * 3u / 1100u);
+  read = ReadColourPng(dir.File("u.png"));
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(read->pixels[123456], Colour(0x40, 0x40, 0x40));
   EXPECT_EQ(ReadColourPng(dir.File("none.png")).status().code(), StatusCode::kNotFound);
   WriteFile(dir.File("text.png"), "not a png");
   EXPECT_EQ(ReadColourPng(dir.File("text.png")).status().message(),
@@ -102,12 +112,12 @@ TEST(ColourPngTest, DepthViewsTakeTheirPixelsColours) {
     EXPECT_EQ(mesh->vertex_count(), std::size_t(kWidth * kHeight - 1));
     ExpectPixelColours(*mesh, f);
   }
-  // The pattern form.
-  WriteFile(dir.File("p.json"), ColourManifest(R"("pattern": "d{frame}.png", "frame_count": 2,
-      "colour_pattern": "c{frame}.png")"));
+  // The pattern form, from its first frame.
+  WriteFile(dir.File("p.json"), ColourManifest(R"("pattern": "d{frame}.png", "frame_count": 1,
+      "first_frame": 1, "colour_pattern": "c{frame}.png")"));
   capture = CaptureSequence::Open(dir.File("p.json"));
   ASSERT_TRUE(capture.ok()) << capture.status().ToString();
-  const auto mesh = (*capture)->LoadView(1, 0);
+  const auto mesh = (*capture)->LoadView(0, 0);
   ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
   ExpectPixelColours(*mesh, 1);
   // Written back, a manifest keeps its colour images (null for a view without one).
@@ -122,8 +132,13 @@ TEST(ColourPngTest, DepthViewsTakeTheirPixelsColours) {
   const auto uncoloured = (*capture)->LoadView(1, 0);
   ASSERT_TRUE(uncoloured.ok()) << uncoloured.status().ToString();
   EXPECT_TRUE(uncoloured->colours.empty());
-  // A capture without colour images has none.
+  // A capture without colour images has none, nor one whose colour images are all null.
   WriteFile(dir.File("n.json"), ColourManifest(R"("frames": [["d0.png"]])"));
+  capture = CaptureSequence::Open(dir.File("n.json"));
+  ASSERT_TRUE(capture.ok()) << capture.status().ToString();
+  EXPECT_FALSE((*capture)->has_colour_images());
+  WriteFile(dir.File("n.json"), ColourManifest(R"("frames": [["d0.png"]],
+      "colour_frames": [[null]])"));
   capture = CaptureSequence::Open(dir.File("n.json"));
   ASSERT_TRUE(capture.ok()) << capture.status().ToString();
   EXPECT_FALSE((*capture)->has_colour_images());
@@ -149,7 +164,8 @@ TEST(ColourPngTest, BadColourInputIsReportedWithTheFile) {
   capture = CaptureSequence::Open(dir.File("m.json"));
   ASSERT_FALSE(capture.ok());
   EXPECT_NE(capture.status().message().find("1 of the 2 view files are missing, the first is " +
-                                            dir.File("gone.png")),
+                                            dir.File("gone.png") +
+                                            " (frame 0, view 0, its colour image)"),
             std::string::npos)
       << capture.status().message();
 
@@ -163,6 +179,10 @@ TEST(ColourPngTest, BadColourInputIsReportedWithTheFile) {
        "colour_pattern goes with pattern"},
       {R"("frames": [["d0.png"]], "colour_frame": [["c.png"]])",
        "colour_frame is not a known field"},
+      {R"("pattern": "d{frame}.png", "frame_count": 1, "colour_frames": [["c.png"]])",
+       "colour_frames goes with frames; with pattern, give colour_pattern"},
+      {R"("pattern": "d{frame}.png", "frame_count": 1, "colour_pattern": "c{frame")",
+       "colour_pattern is invalid"},
   };
   for (const auto& [files, problem] : bad) {
     WriteFile(dir.File("m.json"), ColourManifest(files));

@@ -129,7 +129,9 @@ TEST(VertexColourTest, PlyBadColoursAreErrorsNamingTheFileAndVertex) {
       "property float z\nproperty float red\nproperty float green\nproperty float blue\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   ExpectError(ParsePlyString(header + "0 0 0 0 0 0\n1 0 0 0 1.5 0\n0 1 0 0 0 0\n3 0 1 2\n"),
-              "test.ply", "vertex 1 has colour channel 1.5");
+              "test.ply",
+              "vertex 1 has colour channel 1.5, which must be in [0, 1] for a floating-point "
+              "channel");
   ExpectError(ParsePlyString(header + "0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 -0.25 0 0\n3 0 1 2\n"),
               "test.ply", "vertex 2 has colour channel -0.25");
   ExpectError(ParsePlyString(header + "0 0 0 nan 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
@@ -137,15 +139,76 @@ TEST(VertexColourTest, PlyBadColoursAreErrorsNamingTheFileAndVertex) {
   // A short row is the reader's usual error.
   ExpectError(ParsePlyString(header + "0 0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"), "test.ply",
               "vertex 1: too few values on the line");
-  // A type whose range is not known.
+  // Integer channels must be whole numbers in their range (an ascii file can hold anything).
+  const std::string uchar_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  ExpectError(ParsePlyString(uchar_header + "0 0 0 1 2 3\n1 0 0 300 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+              "test.ply",
+              "vertex 1 has colour channel 300, which must be a whole number in 0..255 for an "
+              "integer channel");
+  ExpectError(ParsePlyString(uchar_header + "0 0 0 1 2.5 3\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n"),
+              "test.ply", "vertex 0 has colour channel 2.5");
+  ExpectError(ParsePlyString(uchar_header + "0 0 0 1 2 3\n1 0 0 0 0 0\n0 1 0 0 0 -1\n3 0 1 2\n"),
+              "test.ply", "vertex 2 has colour channel -1");
+  // Other integer types hold 0..255 too.
   const std::string int_colour =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-      "property float z\nproperty int red\nproperty int green\nproperty int blue\n"
+      "property float z\nproperty int red\nproperty short green\nproperty uint blue\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0 1 1 1\n1 0 0 1 1 1\n0 1 0 1 1 1\n3 0 1 2\n";
-  const auto read = ParsePlyString(int_colour);
-  ExpectError(read, "test.ply", "vertex colour property 'red' must be uchar, ushort, float");
+      "0 0 0 1 2 3\n1 0 0 255 0 9\n0 1 0 0 0 0\n3 0 1 2\n";
+  const auto ints = ParsePlyString(int_colour);
+  ASSERT_TRUE(ints.ok()) << ints.status().ToString();
+  ExpectColours(*ints, {Colour(1, 2, 3), Colour(255, 0, 9), Colour(0, 0, 0)});
+  // A list is not a channel.
+  const std::string list_colour =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty list uchar uchar red\nproperty uchar green\n"
+      "property uchar blue\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "end_header\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n";
+  const auto read = ParsePlyString(list_colour);
+  ExpectError(read, "test.ply", "vertex colour property 'red' is a list");
   EXPECT_EQ(read.status().code(), StatusCode::kUnsupported);
+}
+
+TEST(VertexColourTest, PlyColoursInBinaryRowsWithListsAndInRangeGrids) {
+  // A binary vertex element with a list property is read row by row, not by the fixed-row
+  // fast path.
+  std::string body;
+  for (int v = 0; v < 3; ++v) {
+    body += LittleEndian(float(v == 1)) + LittleEndian(float(v == 2)) + LittleEndian(0.0f);
+    body += LittleEndian(std::uint8_t(10 * v)) + LittleEndian(std::uint8_t(20 * v)) +
+            LittleEndian(std::uint8_t(30 * v));
+    body += std::string(1, '\1') + LittleEndian(0.5f);  // a list of one float
+  }
+  body += std::string(1, '\3') + LittleEndian(std::int32_t(0)) + LittleEndian(std::int32_t(1)) +
+          LittleEndian(std::int32_t(2));
+  const std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nproperty list uchar float weights\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n" +
+      body;
+  auto read = ParsePlyString(binary);
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  ExpectColours(*read, {Colour(0, 0, 0), Colour(10, 20, 30), Colour(20, 40, 60)});
+
+  // A Stanford range grid's vertices keep their colours through its meshing.
+  const std::string grid =
+      "ply\nformat ascii 1.0\nobj_info num_cols 2\nobj_info num_rows 2\nelement vertex 4\n"
+      "property float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+      "property uchar green\nproperty uchar blue\nelement range_grid 4\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0 0 1 1 0 0\n1 0 1 2 0 0\n0 1 1 3 0 0\n1 1 1 4 0 0\n1 0\n1 1\n1 2\n1 3\n";
+  read = ParsePlyString(grid);
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  ASSERT_EQ(read->colours.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    // Red numbers the file's vertex: 1 + x + 2 y.
+    const Eigen::Vector3f& p = read->positions[i];
+    EXPECT_EQ(read->colours[i][0], 1 + std::lround(p.x()) + 2 * std::lround(p.y())) << i;
+  }
 }
 
 TEST(VertexColourTest, ObjRoundTripsAndReadsChannelsInZeroToOne) {
@@ -160,10 +223,13 @@ TEST(VertexColourTest, ObjRoundTripsAndReadsChannelsInZeroToOne) {
   read = ParseObjString("v 0 0 0 0 0.5 1\nv 1 0 0 0.2 0.4 0.6\nv 0 1 0 1 1 1\nf 1 2 3\n");
   ASSERT_TRUE(read.ok()) << read.status().ToString();
   ExpectColours(*read, {Colour(0, 128, 255), Colour(51, 102, 153), Colour(255, 255, 255)});
-  // A `w` is not a colour.
-  read = ParseObjString("v 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nf 1 2 3\n");
-  ASSERT_TRUE(read.ok()) << read.status().ToString();
-  EXPECT_TRUE(read->colours.empty());
+  // A `w`, or more than three numbers after the position, is not a colour.
+  for (const char* extra : {" 1", " 1 0.5", " 1 0.5 0.5 0.5"}) {
+    const std::string v = std::string(extra) + "\n";
+    read = ParseObjString("v 0 0 0" + v + "v 1 0 0" + v + "v 0 1 0" + v + "f 1 2 3\n");
+    ASSERT_TRUE(read.ok()) << read.status().ToString();
+    EXPECT_TRUE(read->colours.empty()) << extra;
+  }
 }
 
 TEST(VertexColourTest, ObjBadColoursAreErrorsNamingTheFileAndLine) {
@@ -194,12 +260,29 @@ TEST(VertexColourTest, MeshOperationsKeepColoursWithTheirVertices) {
   AppendMesh(mesh, &plain);
   EXPECT_TRUE(plain.colours.empty());
   EXPECT_TRUE(ValidateMesh(plain, "m").ok());
+  TriangleMesh coloured = mesh;
+  TriangleMesh uncoloured = mesh;
+  uncoloured.colours.clear();
+  AppendMesh(uncoloured, &coloured);
+  EXPECT_TRUE(coloured.colours.empty());
+  EXPECT_TRUE(ValidateMesh(coloured, "m").ok());
 
-  // Dropping an unused vertex drops its colour.
+  // Dropping an unused vertex drops its colour; the others follow their new numbers.
   TriangleMesh unused = mesh;
-  unused.triangles = {Triangle(1, 2, 3)};
+  unused.triangles = {Triangle(3, 1, 2)};
   RemoveUnreferencedVertices(&unused);
-  ExpectColours(unused, {mesh.colours[1], mesh.colours[2], mesh.colours[3]});
+  ExpectColours(unused, {mesh.colours[3], mesh.colours[1], mesh.colours[2]});
+
+  // A vertex split where two fans meet keeps its colour in the copy.
+  TriangleMesh bowtie;
+  bowtie.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  bowtie.triangles = {Triangle(0, 1, 2), Triangle(0, 3, 4)};
+  bowtie.colours = {Colour(9, 9, 9), Colour(1, 0, 0), Colour(2, 0, 0), Colour(3, 0, 0),
+                    Colour(4, 0, 0)};
+  ASSERT_EQ(SplitNonManifoldVertices(&bowtie), 1u);
+  ExpectColours(bowtie, {Colour(9, 9, 9), Colour(1, 0, 0), Colour(2, 0, 0), Colour(3, 0, 0),
+                         Colour(4, 0, 0), Colour(9, 9, 9)});
+  EXPECT_TRUE(ValidateMesh(bowtie, "m").ok());
 }
 
 }  // namespace

@@ -71,13 +71,14 @@ Status CaptureSequence::CheckViewFiles(int first_frame, int end_frame) const {
   std::error_code error;
   for (int frame = first_frame; frame < end_frame; ++frame) {
     for (int view = 0; view < view_count(); ++view) {
-      for (const std::string& path : {paths_[frame][view], colour_path(frame, view)}) {
-        if (path.empty()) continue;
+      const std::string& colour = colour_path(frame, view);
+      for (const std::string* path : {&paths_[frame][view], &colour}) {
+        if (path->empty()) continue;
         ++checked;
-        if (fs::is_regular_file(path, error)) continue;
+        if (fs::is_regular_file(*path, error)) continue;
         if (missing++ == 0) {
-          first_missing =
-              path + " (frame " + std::to_string(frame) + ", view " + std::to_string(view) + ")";
+          first_missing = *path + " (frame " + std::to_string(frame) + ", view " +
+                          std::to_string(view) + (path == &colour ? ", its colour image)" : ")");
         }
       }
     }
@@ -140,6 +141,11 @@ StatusOr<std::unique_ptr<CaptureSequence>> CaptureSequenceBuilder::Make(
       }
     }
   }
+  const bool any_colour =
+      std::any_of(colour_paths.begin(), colour_paths.end(), [](const auto& row) {
+        return std::any_of(row.begin(), row.end(), [](const std::string& p) { return !p.empty(); });
+      });
+  if (!any_colour) colour_paths.clear();
   auto capture = std::make_unique<CaptureSequence>();
   capture->source_ = source;
   info.frame_count = static_cast<int>(paths.size());

@@ -238,6 +238,9 @@ class ManifestReader {
       return Error("colour_frames", "and colour_pattern must not both be given");
     }
     if (root.contains("colour_frames")) {
+      if (!root.contains("frames")) {
+        return Error("colour_frames", "goes with frames; with pattern, give colour_pattern");
+      }
       const Json& frames = root["colour_frames"];
       if (!frames.is_array() || static_cast<int>(frames.size()) != frame_count) {
         return Error("colour_frames",
@@ -273,6 +276,14 @@ class ManifestReader {
           FilePattern::Parse(ResolveBesides(manifest_, root["colour_pattern"].get<std::string>()));
       if (!pattern.ok()) {
         return Error("colour_pattern", "is invalid: " + pattern.status().message());
+      }
+      if (!pattern->has_view() && view_count > 1) {
+        return Error("colour_pattern", "has no {view} placeholder but the capture has " +
+                                           std::to_string(view_count) + " views");
+      }
+      if (!pattern->has_frame() && frame_count > 1) {
+        return Error("colour_pattern", "has no {frame} placeholder but the capture has " +
+                                           std::to_string(frame_count) + " frames");
       }
       const int first_frame = root.value("first_frame", 0);  // checked with pattern
       for (int f = 0; f < frame_count; ++f) {

@@ -141,6 +141,7 @@ StatusOr<DecodedPng> DecodePng(const std::string& path, const char* kind, PngPre
   DecodedPng image;
   Status refused;
   std::vector<png_bytep> rows;
+  std::size_t stored_row_bytes = 0;
   if (info == nullptr || setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
     return CorruptError(path + ": damaged PNG: " + error);
@@ -148,6 +149,8 @@ StatusOr<DecodedPng> DecodePng(const std::string& path, const char* kind, PngPre
   png_init_io(png, file.get());
   png_set_sig_bytes(png, 8);
   png_read_info(png, info);
+  // The bound on what the file can hold uses the rows as stored, before any expansion.
+  stored_row_bytes = png_get_rowbytes(png, info);
   refused = prepare(png, png_get_color_type(png, info), png_get_bit_depth(png, info), path);
   if (!refused.ok()) {
     png_destroy_read_struct(&png, &info, nullptr);
@@ -161,7 +164,7 @@ StatusOr<DecodedPng> DecodePng(const std::string& path, const char* kind, PngPre
   image.height = static_cast<int>(png_get_image_height(png, info));
   image.bit_depth = png_get_bit_depth(png, info);
   image.row_bytes = png_get_rowbytes(png, info);
-  const std::uint64_t pixel_bytes = std::uint64_t{image.row_bytes} * image.height;
+  const std::uint64_t pixel_bytes = std::uint64_t{stored_row_bytes} * image.height;
   if (pixel_bytes / kMaxDeflateExpansion > file_size) {
     png_destroy_read_struct(&png, &info, nullptr);
     return CorruptError(path + ": a " + std::to_string(image.width) + " x " +

@@ -26,7 +26,7 @@ struct MeshWriteOptions {
 
 /// Reads a .ply or .obj file (chosen by extension, case-insensitive). Polygons are fan
 /// triangulated. A PLY `range_grid` element (Stanford range scans) is triangulated as a
-/// range grid with TriangulateRangeGrid's defaults (its colours, if any, are not kept).
+/// range grid with TriangulateRangeGrid's defaults.
 /// Per-vertex colours are read from PLY `red green blue` (uchar, ushort, or float and double
 /// in [0, 1]) and OBJ `v x y z r g b` (in [0, 1]). The result passes ValidateMesh; every
 /// error names the file and what is wrong (missing file, truncated data, bad index, NaN...).

@@ -62,24 +62,31 @@ struct ObjContents {
   std::size_t max_normal_line = 0;
 };
 
+// "NAME: line N: ", the start of an error about line N (built only for an error).
+std::string Where(const std::string& name, std::size_t line_number) {
+  return name + ": line " + std::to_string(line_number) + ": ";
+}
+
 // The colour after a `v` line's coordinates (`v x y z r g b`, channels in [0, 1]): false
-// without one (nothing, or a `w`); an error for channels outside [0, 1].
-StatusOr<bool> ParseVertexColour(std::string_view rest, const std::string& where, Colour* colour) {
+// without one (nothing, a `w`, or more than three numbers); an error for a channel outside
+// [0, 1] or a word that is not a number.
+StatusOr<bool> ParseVertexColour(std::string_view rest, const std::string& name,
+                                 std::size_t line_number, Colour* colour) {
   std::string_view word;
   float channels[3];
   int count = 0;
   while (NextWord(&rest, &word)) {
     if (count == 3) return false;  // more than r g b: not a colour this reader knows
     if (!ParseFloat(word, &channels[count])) {
-      return CorruptError(where + "'" + std::string(word) + "' is not a number");
+      return CorruptError(Where(name, line_number) + "'" + std::string(word) + "' is not a number");
     }
     ++count;
   }
   if (count != 3) return false;
   for (int c = 0; c < 3; ++c) {
     if (!(channels[c] >= 0.0f && channels[c] <= 1.0f)) {
-      return CorruptError(where + "vertex colour channel " + std::to_string(channels[c]) +
-                          " is outside [0, 1]");
+      return CorruptError(Where(name, line_number) + "vertex colour channel " +
+                          std::to_string(channels[c]) + " is outside [0, 1]");
     }
     (*colour)[c] = static_cast<std::uint8_t>(std::lround(channels[c] * 255.0f));
   }
@@ -92,13 +99,13 @@ Status AddVertexColour(std::string_view rest, std::size_t line_number, const std
                        ObjContents* obj) {
   std::string_view word;
   for (int c = 0; c < 3; ++c) NextWord(&rest, &word);
-  const std::string where = name + ": line " + std::to_string(line_number) + ": ";
   Colour colour;
-  MESHVID_ASSIGN_OR_RETURN(const bool has_colour, ParseVertexColour(rest, where, &colour));
+  MESHVID_ASSIGN_OR_RETURN(const bool has_colour,
+                           ParseVertexColour(rest, name, line_number, &colour));
   if (obj->positions.size() == 1) obj->first_v_line = line_number;
   const bool first_had = obj->positions.size() == 1 ? has_colour : !obj->colours.empty();
   if (has_colour != first_had) {
-    return CorruptError(where +
+    return CorruptError(Where(name, line_number) +
                         (has_colour ? "a vertex colour, but the 'v' line at line "
                                     : "no vertex colour, but the 'v' line at line ") +
                         std::to_string(obj->first_v_line) +

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -89,45 +90,53 @@ std::optional<std::array<int, 3>> ColourProperties(const PlyElement& e) {
   return std::nullopt;
 }
 
-// A colour property's type must be one whose range is known: 8 or 16 bits, or floating point
-// in [0, 1].
+// A colour property must be a scalar (any type: its values are checked row by row).
 Status CheckColourTypes(const PlyElement& e, const std::string& name) {
   const auto colour = ColourProperties(e);
   if (!colour) return Status::Ok();
   for (const int k : *colour) {
-    const PlyProperty& p = e.properties[k];
-    if (p.is_list ||
-        !(p.type == PlyType::kUint8 || p.type == PlyType::kUint16 || IsFloatType(p.type))) {
-      return UnsupportedError(name + ": vertex colour property '" + p.name +
-                              "' must be uchar, ushort, float or double");
+    if (e.properties[k].is_list) {
+      return UnsupportedError(name + ": vertex colour property '" + e.properties[k].name +
+                              "' is a list; a colour channel is one number");
     }
   }
   return Status::Ok();
 }
 
-// One colour channel as 8 bits: uchar as it is, ushort from 16 bits, float from [0, 1].
-// False for a float outside [0, 1] (or NaN).
+// The range a colour channel of `type` must lie in, as the errors state it.
+const char* ColourRangeText(PlyType type) {
+  if (type == PlyType::kUint16) return "a whole number in 0..65535 for a ushort channel";
+  if (IsFloatType(type)) return "in [0, 1] for a floating-point channel";
+  return "a whole number in 0..255 for an integer channel";
+}
+
+// One colour channel as 8 bits: ushort scaled from 16 bits, another integer type taken as
+// 0..255, float and double from [0, 1]. False for a value outside its type's range, a
+// fraction in an integer channel (an ascii file can hold one) or NaN.
 bool ColourChannel(double value, PlyType type, std::uint8_t* channel) {
-  if (type == PlyType::kUint8) {
-    *channel = static_cast<std::uint8_t>(value);
-  } else if (type == PlyType::kUint16) {
-    *channel = static_cast<std::uint8_t>(std::lround(value / 257.0));
-  } else {
+  if (IsFloatType(type)) {
     if (!(value >= 0.0 && value <= 1.0)) return false;
     *channel = static_cast<std::uint8_t>(std::lround(value * 255.0));
+    return true;
   }
+  const double most = type == PlyType::kUint16 ? 65535.0 : 255.0;
+  if (!(value >= 0.0 && value <= most) || value != std::floor(value)) return false;
+  *channel = static_cast<std::uint8_t>(type == PlyType::kUint16 ? std::lround(value / 257.0)
+                                                                : std::lround(value));
   return true;
 }
 
 // The colour of a vertex row from its values (indexed by Role), the channels' types in
-// `types`; an error naming the vertex for a float channel outside [0, 1].
+// `types`; an error naming the vertex for a channel outside its type's range.
 Status RowColour(const double* values, const std::array<PlyType, 3>& types, const std::string& name,
                  std::uint64_t row, Colour* colour) {
   for (int c = 0; c < 3; ++c) {
     const double value = values[static_cast<int>(Role::kRed) + c];
     if (!ColourChannel(value, types[c], &(*colour)[c])) {
+      std::ostringstream text;
+      text << value;
       return CorruptError(name + ": vertex " + std::to_string(row) + " has colour channel " +
-                          std::to_string(value) + ", outside [0, 1] for a float colour");
+                          text.str() + ", which must be " + ColourRangeText(types[c]));
     }
   }
   return Status::Ok();
@@ -599,7 +608,7 @@ StatusOr<TriangleMesh> ParsePly(std::string_view data, const std::string& name) 
   TriangleMesh mesh;
   if (contents.triangles.empty() && contents.has_grid) {
     MESHVID_ASSIGN_OR_RETURN(mesh, MeshStanfordRangeGrid(header, contents.positions,
-                                                         contents.grid, name));
+                                                         contents.colours, contents.grid, name));
   } else {
     if (contents.triangles.empty()) return CorruptError(name + ": PLY has no faces");
     mesh.positions = std::move(contents.positions);

@@ -20,6 +20,7 @@ constexpr float kStanfordScannerStandoff = 0.15f;
 
 StatusOr<TriangleMesh> MeshStanfordRangeGrid(const PlyHeader& header,
                                              const std::vector<Eigen::Vector3f>& positions,
+                                             const std::vector<Colour>& colours,
                                              const std::vector<std::int32_t>& cells,
                                              const std::string& name) {
   const auto cols = header.ObjInfoInt("num_cols");
@@ -50,6 +51,7 @@ StatusOr<TriangleMesh> MeshStanfordRangeGrid(const PlyHeader& header,
   grid.height = static_cast<int>(*rows);
   grid.points.assign(cells.size(), Eigen::Vector3f::Zero());
   grid.depth.assign(cells.size(), 0.0f);
+  if (!colours.empty()) grid.colours.assign(cells.size(), Colour::Zero());
   for (int r = 0; r < grid.height; ++r) {
     const std::size_t image_row = static_cast<std::size_t>(grid.height - 1 - r);
     for (int c = 0; c < grid.width; ++c) {
@@ -58,6 +60,7 @@ StatusOr<TriangleMesh> MeshStanfordRangeGrid(const PlyHeader& header,
       const std::size_t cell = image_row * grid.width + c;
       grid.points[cell] = positions[index];
       grid.depth[cell] = scanner_z - positions[index].z();
+      if (!colours.empty()) grid.colours[cell] = colours[index];
     }
   }
   TriangleMesh mesh = TriangulateRangeGrid(grid);

@@ -39,13 +39,15 @@ struct RecordedFile {
 constexpr RecordedFile kRecordedFiles[] = {{17263, 0x8ad6d91a}, {17315, 0x46262709}};
 
 /// Simulates the arm-block at 160 x 120 pixels (`frames` frames, `views` views) into
-/// `dir`/cap and encodes it at the defaults into `dir`/`file`; returns the encode's command
-/// line up to its output file, for encoding the capture again (empty after a failure).
+/// `dir`/cap (with `simulate_options` added to the simulate command) and encodes it at the
+/// defaults into `dir`/`file`; returns the encode's command line up to its output file, for
+/// encoding the capture again (empty after a failure).
 std::string SimulateAndEncodeSmallArmBlock(const testing::TempDir& dir, int frames, int views,
-                                           const std::string& file) {
+                                           const std::string& file,
+                                           const std::string& simulate_options = "") {
   testing::CliRun run = testing::RunMeshvid(
       "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:" + std::to_string(frames) +
-          " --views " + std::to_string(views) + " --res 160x120 -q",
+          " --views " + std::to_string(views) + " --res 160x120 -q " + simulate_options,
       dir);
   if (run.exit_code != 0) {
     ADD_FAILURE() << "simulate: " << run.err;
@@ -118,7 +120,7 @@ TEST(EncodeCliTest, TheFileIsTheSameWhateverTheMachinesCpu) {
 TEST(EncodeCliTest, ColoursInTheViewsLeaveTheFileAsItWas) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
-  const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 2, 2, "plain.mvid");
+  const std::string encode = SimulateAndEncodeSmallArmBlock(dir, 2, 2, "plain.mvid", "--no-colour");
   ASSERT_FALSE(encode.empty());
   auto capture = CaptureSequence::Open(dir.File("cap/manifest.json"));
   ASSERT_TRUE(capture.ok()) << capture.status().ToString();

@@ -20,6 +20,9 @@ TEST(SimulateCliTest, SimulatesTheClothScene) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string log = run.out + run.err;
   EXPECT_NE(log.find("Simulated 2 frames x 3 views (160x120"), std::string::npos) << log;
+  EXPECT_NE(log.find("Colour: a procedural albedo fixed to the surface, seen with exposure gains"),
+            std::string::npos)
+      << log;
   for (const char* name : {"f0000_v0.ply", "f0000_v1.ply", "f0000_v2.ply", "f0001_v0.ply",
                            "f0001_v1.ply", "f0001_v2.ply", "manifest.json", "simulate.json",
                            "ground_truth.obj", "ground_truth.pc2"}) {
@@ -33,6 +36,23 @@ TEST(SimulateCliTest, SimulatesTheClothScene) {
   auto view = (*capture)->LoadView(1, 2);
   ASSERT_TRUE(view.ok()) << view.status().ToString();
   EXPECT_GT(view->triangle_count(), 1000u);
+  EXPECT_EQ(view->colours.size(), view->vertex_count());
+}
+
+TEST(SimulateCliTest, NoColourLeavesColourOut) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string out = dir.File("cap");
+  const testing::CliRun run = testing::RunMeshvid(
+      "simulate scene:cloth -o \"" + out + "\" --frames 0:1 --res 80x60 --no-colour --json -", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("\"colour\": \"none\""), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("No colour (--no-colour)."), std::string::npos) << run.err;
+  auto capture = CaptureSequence::Open(out + "/manifest.json");
+  ASSERT_TRUE(capture.ok()) << capture.status().ToString();
+  auto view = (*capture)->LoadView(0, 0);
+  ASSERT_TRUE(view.ok()) << view.status().ToString();
+  EXPECT_TRUE(view->colours.empty());
 }
 
 TEST(SimulateCliTest, BadArgumentsAreUsageErrorsWithAMessage) {
@@ -49,6 +69,8 @@ TEST(SimulateCliTest, BadArgumentsAreUsageErrorsWithAMessage) {
       {"scene:cloth" + out + "--frames 0:1 --views 0", 2, "--views must be at least 1"},
       {"scene:cloth" + out + "--frames 0:1 --dropout 1", 2, "--dropout"},
       {"scene:cloth" + out + "--frames 200:300", 2, "--frames"},
+      {"scene:cloth" + out + "--frames 0:1 --exposure-spread 2", 2, "exposure spread"},
+      {"scene:cloth" + out + "--frames 0:1 --colour-noise -1", 2, "colour noise"},
       {"scene:nothing" + out, 1, "scene:arm-block"},
       {"\"" + dir.File("missing.obj") + "\"" + out, 1, "missing.obj"},
   };

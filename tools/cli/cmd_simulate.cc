@@ -34,6 +34,9 @@ struct SimulateArgs {
   std::string up = "y";
   double fov = 0.0;
   double frame_rate = 25.0;
+  bool no_colour = false;
+  double exposure_spread = 0.1;
+  double colour_noise = 2.0;
   bool quiet = false;
   std::string json;
 };
@@ -75,6 +78,9 @@ Status BuildOptions(const SimulateArgs& args, SimulateOptions* options) {
   options->sensor.seed = args.seed;
   options->sensor.max_angle_deg = args.max_angle;
   options->sensor.meshing.max_depth_jump_ratio = static_cast<float>(args.depth_jump);
+  options->sensor.exposure_spread = args.exposure_spread;
+  options->sensor.colour_noise = args.colour_noise;
+  options->colour = !args.no_colour;
   options->ground_truth_spec = args.ground_truth;
   return ValidateSensorOptions(options->sensor);
 }
@@ -123,6 +129,31 @@ std::string FacingText(const SimulateSummary& s, const SimulateArgs& args) {
   return out;
 }
 
+/// Where the colour came from and how the views see it.
+std::string ColourText(const SimulateSummary& s, const SimulateOptions& options) {
+  switch (s.colour_source) {
+    case ColourSource::kNone:
+      return options.colour ? "No colour: the ground truth has no vertex colours of its own and "
+                              "changes connectivity, so no albedo can ride its surface."
+                            : "No colour (--no-colour).";
+    case ColourSource::kGroundTruth:
+    case ColourSource::kAlbedo:
+      break;
+  }
+  std::string gains;
+  for (double gain : s.exposure_gains) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "%s%.2f", gains.empty() ? "" : " ", gain);
+    gains += text;
+  }
+  char noise[32];
+  std::snprintf(noise, sizeof(noise), "%g", options.sensor.colour_noise);
+  return std::string("Colour: ") +
+         (s.colour_source == ColourSource::kAlbedo ? "a procedural albedo fixed to the surface"
+                                                   : "the ground truth's own vertex colours") +
+         ", seen with exposure gains " + gains + " and noise " + noise + ".";
+}
+
 int RunSimulate(const SimulateArgs& args) {
   SimulateOptions options;
   if (Status status = BuildOptions(args, &options); !status.ok()) {
@@ -159,7 +190,9 @@ int RunSimulate(const SimulateArgs& args) {
         {"output_bytes", s.output_bytes},
         {"seconds", s.seconds},
         {"rig_direction", {s.rig_direction.x(), s.rig_direction.y(), s.rig_direction.z()}},
-        {"depth_over_width", s.depth_over_width}};
+        {"depth_over_width", s.depth_over_width},
+        {"colour", ColourSourceName(s.colour_source)},
+        {"exposure_gains", s.exposure_gains}};
     const Status written = WriteJsonOutput(args.json, DumpJson(j, 2) + "\n");
     if (!written.ok()) return ReportError(written);
   }
@@ -180,6 +213,7 @@ int RunSimulate(const SimulateArgs& args) {
         options.sensor.max_angle_deg, options.sensor.dropout, HumanBytes(s.output_bytes).c_str(),
         s.seconds, s.seconds > 0 ? s.frames / s.seconds : 0.0, s.manifest_path.c_str());
     std::fprintf(stderr, "%s\n", FacingText(s, args).c_str());
+    std::fprintf(stderr, "%s\n", ColourText(s, options).c_str());
   }
   return 0;
 }
@@ -233,6 +267,17 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "Horizontal field of view in degrees (default: Kinect-like, fx = 525 at 640)");
   cmd->add_option("--fps", args->frame_rate,
                   "Frame rate for ground truth that does not store one")
+      ->capture_default_str();
+  cmd->add_flag("--no-colour", args->no_colour,
+                "No colour. By default the views and the written ground truth carry colour:\n"
+                "the ground truth's own vertex colours, or else a procedural albedo fixed to\n"
+                "its surface (ground truth of fixed connectivity)");
+  cmd->add_option("--exposure-spread", args->exposure_spread,
+                  "Each view scales colour by its own exposure gain exp(spread * N(0, 1)),\n"
+                  "drawn once per view; 0: every view sees the same colour")
+      ->capture_default_str();
+  cmd->add_option("--colour-noise", args->colour_noise,
+                  "Std. deviation of each colour sample's noise, in 8-bit units")
       ->capture_default_str();
   cmd->add_option("--json", args->json, JsonOptionHelp("Also write the summary"))
       ->type_name("FILE|-");

@@ -63,6 +63,7 @@ class Pc2MeshSequence : public MeshSequence {
     TriangleMesh mesh;
     mesh.positions = std::move(positions);
     mesh.triangles = template_.triangles;
+    mesh.colours = template_.colours;  // colour rides each vertex through the animation
     MESHVID_RETURN_IF_ERROR(ValidateMesh(mesh, pc2_path_ + " frame " + std::to_string(t)));
     return mesh;
   }

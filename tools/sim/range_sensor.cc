@@ -1,5 +1,6 @@
 #include "tools/sim/range_sensor.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <numbers>
@@ -12,6 +13,20 @@
 #include "codec/common/counter_random.h"
 
 namespace meshvid {
+namespace {
+
+/// A standard normal draw from two counter-based uniforms (Box-Muller).
+double Gaussian(std::uint64_t key_a, std::uint64_t key_b) {
+  return std::sqrt(-2.0 * std::log(UniformOpen(SplitMix64(key_a)))) *
+         std::cos(2.0 * std::numbers::pi * UniformOpen(SplitMix64(key_b)));
+}
+
+/// Keys of the colour draws: far from the depth draws' key + 1..3.
+constexpr std::uint64_t kColourKeyOffset = 16;
+constexpr std::uint64_t kExposureKey = 0x6578706f73757265ULL;  // "exposure"
+
+}  // namespace
+
 Status ValidateSensorOptions(const SensorOptions& options) {
   if (!(options.noise_sigma >= 0) || !std::isfinite(options.noise_sigma)) {
     return InvalidArgumentError("noise sigma must be finite and >= 0 (got " +
@@ -25,10 +40,25 @@ Status ValidateSensorOptions(const SensorOptions& options) {
     return InvalidArgumentError("maximum grazing angle must be in (0, 90] degrees (got " +
                                 std::to_string(options.max_angle_deg) + ")");
   }
+  if (!(options.exposure_spread >= 0 && options.exposure_spread <= 1)) {
+    return InvalidArgumentError("exposure spread must be in [0, 1] (got " +
+                                std::to_string(options.exposure_spread) + ")");
+  }
+  if (!(options.colour_noise >= 0 && options.colour_noise <= 255)) {
+    return InvalidArgumentError("colour noise must be in [0, 255] 8-bit units (got " +
+                                std::to_string(options.colour_noise) + ")");
+  }
   if (!(options.meshing.max_depth_jump_ratio > 0)) {
     return InvalidArgumentError("depth-jump ratio must be > 0");
   }
   return Status::Ok();
+}
+
+double ViewExposureGain(const SensorOptions& options, int view) {
+  if (options.exposure_spread == 0) return 1.0;
+  const std::uint64_t key =
+      SplitMix64(SplitMix64(options.seed ^ kExposureKey) ^ static_cast<std::uint64_t>(view));
+  return std::exp(options.exposure_spread * Gaussian(key + 1, key + 2));
 }
 
 RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& camera,
@@ -41,6 +71,9 @@ RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& cam
   grid.points.assign(pixels, Eigen::Vector3f::Zero());
   grid.depth.assign(pixels, 0.0f);
   if (pixels == 0 || !camera.intrinsics) return scan;
+  const bool coloured = image.colour.size() == pixels;
+  if (coloured) grid.colours.assign(pixels, Colour::Zero());
+  const float gain = static_cast<float>(ViewExposureGain(options, view));
   const PinholeIntrinsics& k = *camera.intrinsics;
   const Eigen::Matrix3d rotation = camera.world_from_camera.linear();
   const Eigen::Vector3d origin = camera.world_from_camera.translation();
@@ -65,14 +98,23 @@ RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& cam
         const Eigen::Vector3d ray = k.RayThrough(u, v);  // camera frame, z = 1
         double depth = hit_depth;
         if (options.noise_sigma > 0) {
-          // Box-Muller: one standard normal draw, applied along the ray.
-          const double gaussian = std::sqrt(-2.0 * std::log(UniformOpen(SplitMix64(key + 2)))) *
-                                  std::cos(2.0 * std::numbers::pi * UniformOpen(SplitMix64(key + 3)));
-          depth += options.noise_sigma * gaussian / ray.norm();
+          // One standard normal draw, applied along the ray.
+          depth += options.noise_sigma * Gaussian(key + 2, key + 3) / ray.norm();
         }
         if (!(depth > 0)) continue;
         grid.depth[pixel] = static_cast<float>(depth);
         grid.points[pixel] = (origin + rotation * (depth * ray)).cast<float>();
+        if (coloured) {
+          for (int c = 0; c < 3; ++c) {
+            const std::uint64_t colour_key = key + kColourKeyOffset + 2 * c;
+            double value = gain * image.colour[pixel][c];
+            if (options.colour_noise > 0) {
+              value += options.colour_noise * Gaussian(colour_key, colour_key + 1);
+            }
+            grid.colours[pixel][c] =
+                static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L));
+          }
+        }
         ++local_kept;
       }
     }

@@ -28,6 +28,14 @@ struct SensorOptions {
   std::uint64_t seed = 1;
   /// The depth-jump rule used when meshing the range image.
   RangeGridMeshing meshing;
+  /// Colour, when the ray-cast mesh has vertex colours: each view scales the surface's colour
+  /// by its own exposure gain, exp(exposure_spread * g) with g a standard normal drawn once
+  /// per view (fixed through the capture, as a camera's exposure is), then adds Gaussian noise
+  /// of colour_noise (8-bit units) per channel and sample, and rounds to 8 bits. Colour draws
+  /// are separate from the depth draws: a capture's geometry is the same with or without
+  /// colour.
+  double exposure_spread = 0.1;
+  double colour_noise = 2.0;
 };
 
 /// Checks the sensor options; the message names the bad option.
@@ -35,7 +43,8 @@ Status ValidateSensorOptions(const SensorOptions& options);
 
 /// One view's range image after the sensor's defects, with counts.
 struct RangeScan {
-  RangeGrid grid;         ///< world-coordinate samples, depth 0 where invalid
+  RangeGrid grid;         ///< world-coordinate samples, depth 0 where invalid; colours when
+                          ///< the image has them
   long hit_pixels = 0;    ///< pixels whose ray met the surface
   long valid_samples = 0; ///< samples kept (after grazing rejection and drop-out)
 };
@@ -45,6 +54,9 @@ struct RangeScan {
 /// with.
 RangeScan ApplySensorModel(const RayCastImage& image, const ViewCalibration& camera,
                            const SensorOptions& options, int frame, int view);
+
+/// The exposure gain of view `view` under `options` (see SensorOptions::exposure_spread).
+double ViewExposureGain(const SensorOptions& options, int view);
 
 /// A rig of range sensors simulating one frame at a time.
 class CaptureSimulator {

@@ -50,6 +50,12 @@ RayCaster::~RayCaster() = default;
 
 Status RayCaster::SetMesh(const TriangleMesh& mesh) {
   if (mesh.empty()) return InvalidArgumentError("cannot ray-cast an empty mesh");
+  colours_ = mesh.colours;
+  if (colours_.empty()) {
+    triangles_.clear();
+  } else {
+    triangles_ = mesh.triangles;
+  }
   if (scene_ == nullptr) {
     MESHVID_ASSIGN_OR_RETURN(scene_, EmbreeScene::Create(mesh));
     return Status::Ok();
@@ -72,6 +78,8 @@ StatusOr<long> RayCaster::Cast(const ViewCalibration& view, RayCastImage* image)
   const std::size_t pixels = static_cast<std::size_t>(k.width) * k.height;
   image->depth.assign(pixels, 0.0f);
   image->cos_incidence.assign(pixels, 0.0f);
+  const bool coloured = !colours_.empty();
+  image->colour.assign(coloured ? pixels : 0, Eigen::Vector3f::Zero());
   const Eigen::Matrix3f rotation = view.world_from_camera.linear().cast<float>();
   const Eigen::Vector3f origin = view.world_from_camera.translation().cast<float>();
   int u_begin, u_end, v_begin, v_end;
@@ -105,6 +113,12 @@ StatusOr<long> RayCaster::Cast(const ViewCalibration& view, RayCastImage* image)
           if (!(norms > 0)) continue;  // degenerate triangle
           image->depth[pixel] = hit.t;
           image->cos_incidence[pixel] = std::abs(dir.dot(hit.normal)) / norms;
+          if (coloured) {
+            const Triangle& corners = triangles_[hit.triangle];
+            image->colour[pixel] = (1.0f - hit.u - hit.v) * colours_[corners[0]].cast<float>() +
+                                   hit.u * colours_[corners[1]].cast<float>() +
+                                   hit.v * colours_[corners[2]].cast<float>();
+          }
           ++local_hits;
         }
       }

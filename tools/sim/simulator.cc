@@ -16,6 +16,7 @@
 #include "tools/io/capture.h"
 #include "tools/io/mesh_io.h"
 #include "tools/io/pc2.h"
+#include "tools/sim/albedo.h"
 
 namespace meshvid {
 namespace {
@@ -38,7 +39,8 @@ Status CreateOutputDir(const std::string& dir) {
 
 Status WriteSimulateJson(const std::string& path, const MeshSequence& ground_truth,
                          const SimulateOptions& options, int first, int end,
-                         const std::vector<ViewCalibration>& views) {
+                         const std::vector<ViewCalibration>& views,
+                         const SimulateSummary& summary) {
   nlohmann::ordered_json j;
   j["generator"] = "meshvid simulate";
   j["ground_truth"] = options.ground_truth_spec.empty() ? ground_truth.description()
@@ -64,6 +66,10 @@ Status WriteSimulateJson(const std::string& path, const MeshSequence& ground_tru
                  {"dropout", sensor.dropout},
                  {"seed", sensor.seed},
                  {"max_depth_jump_ratio", sensor.meshing.max_depth_jump_ratio}};
+  j["colour"] = {{"source", ColourSourceName(summary.colour_source)},
+                 {"exposure_spread", sensor.exposure_spread},
+                 {"colour_noise", sensor.colour_noise},
+                 {"exposure_gains", summary.exposure_gains}};
   return WriteFileAtomically(path, j.dump(2) + "\n");
 }
 
@@ -113,6 +119,46 @@ class GroundTruthWriter {
   std::vector<std::string> paths_;
 };
 
+/// Decides where the simulated colour comes from (summary->colour_source) and returns the
+/// albedo to paint on every frame: empty unless the source is "albedo".
+StatusOr<std::vector<Colour>> ChooseColour(MeshSequence& ground_truth, int first,
+                                           const SimulateOptions& options,
+                                           SimulateSummary* summary) {
+  summary->colour_source = ColourSource::kNone;
+  if (!options.colour) return std::vector<Colour>();
+  MESHVID_ASSIGN_OR_RETURN(TriangleMesh first_mesh, ground_truth.Frame(first));
+  if (!first_mesh.colours.empty()) {
+    summary->colour_source = ColourSource::kGroundTruth;
+    return std::vector<Colour>();
+  }
+  if (!ground_truth.fixed_connectivity()) return std::vector<Colour>();
+  // Source frame 0, whatever the simulated range, so a frame's colour does not depend on it.
+  MESHVID_ASSIGN_OR_RETURN(TriangleMesh reference, ground_truth.Frame(0));
+  summary->colour_source = ColourSource::kAlbedo;
+  return PaintAlbedo(reference);
+}
+
+/// Gives `mesh` (source frame `frame`) the colour `source` calls for.
+Status ApplyColour(const std::vector<Colour>& albedo, ColourSource source, int frame,
+                   TriangleMesh* mesh) {
+  if (source == ColourSource::kAlbedo) {
+    if (albedo.size() != mesh->vertex_count()) {
+      return InvalidArgumentError("ground-truth frame " + std::to_string(frame) + " has " +
+                                  std::to_string(mesh->vertex_count()) +
+                                  " vertices where frame 0 has " + std::to_string(albedo.size()) +
+                                  ": a fixed-connectivity sequence keeps its vertex count");
+    }
+    mesh->colours = albedo;
+  } else if (source == ColourSource::kNone) {
+    mesh->colours.clear();
+  } else if (mesh->colours.empty()) {
+    return InvalidArgumentError("ground-truth frame " + std::to_string(frame) +
+                                " has no vertex colours where the first simulated frame has "
+                                "them; give every frame colours, or simulate with --no-colour");
+  }
+  return Status::Ok();
+}
+
 long long FileSize(const std::string& path) {
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
@@ -120,6 +166,18 @@ long long FileSize(const std::string& path) {
 }
 
 }  // namespace
+
+const char* ColourSourceName(ColourSource source) {
+  switch (source) {
+    case ColourSource::kGroundTruth:
+      return "ground truth";
+    case ColourSource::kAlbedo:
+      return "albedo";
+    case ColourSource::kNone:
+      break;
+  }
+  return "none";
+}
 
 std::string SimulatedViewFileName(int frame, int view) {
   char name[48];
@@ -166,18 +224,25 @@ StatusOr<SimulateSummary> SimulateCapture(MeshSequence& ground_truth, const std:
   }
   MESHVID_ASSIGN_OR_RETURN(std::vector<ViewCalibration> views,
                            PlaceCameras(box, options.rig));
-  MESHVID_RETURN_IF_ERROR(WriteSimulateJson(out_dir + "/simulate.json", ground_truth, options,
-                                            first, end, views));
-  MESHVID_ASSIGN_OR_RETURN(auto simulator, CaptureSimulator::Create(views, options.sensor));
-  MESHVID_ASSIGN_OR_RETURN(auto truth_writer, GroundTruthWriter::Create(
-                                                  out_dir, ground_truth.fixed_connectivity()));
-
-  // Pass 2: simulate and write every frame.
   SimulateSummary summary;
   summary.frames = frames;
   summary.views = static_cast<int>(views.size());
   summary.rig_direction = RigCentreDirection(options.rig);
   summary.depth_over_width = DepthOverWidth(box, summary.rig_direction, options.rig.up);
+  MESHVID_ASSIGN_OR_RETURN(std::vector<Colour> albedo,
+                           ChooseColour(ground_truth, first, options, &summary));
+  if (summary.colour_source != ColourSource::kNone) {
+    for (int v = 0; v < summary.views; ++v) {
+      summary.exposure_gains.push_back(ViewExposureGain(options.sensor, v));
+    }
+  }
+  MESHVID_RETURN_IF_ERROR(WriteSimulateJson(out_dir + "/simulate.json", ground_truth, options,
+                                            first, end, views, summary));
+  MESHVID_ASSIGN_OR_RETURN(auto simulator, CaptureSimulator::Create(views, options.sensor));
+  MESHVID_ASSIGN_OR_RETURN(auto truth_writer, GroundTruthWriter::Create(
+                                                  out_dir, ground_truth.fixed_connectivity()));
+
+  // Pass 2: simulate and write every frame.
   const int view_count = summary.views;
   std::vector<std::vector<std::string>> paths(frames, std::vector<std::string>(view_count));
   const double frame_rate = ground_truth.frame_rate() > 0 ? ground_truth.frame_rate() : 25.0;
@@ -189,7 +254,8 @@ StatusOr<SimulateSummary> SimulateCapture(MeshSequence& ground_truth, const std:
     if (cache.empty()) {
       MESHVID_ASSIGN_OR_RETURN(loaded, ground_truth.Frame(first + f));
     }
-    const TriangleMesh& mesh = cache.empty() ? loaded : cache[f];
+    TriangleMesh& mesh = cache.empty() ? loaded : cache[f];
+    MESHVID_RETURN_IF_ERROR(ApplyColour(albedo, summary.colour_source, first + f, &mesh));
     std::vector<RangeScan> scans;
     MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> meshes,
                              simulator->SimulateFrame(mesh, f, &scans));

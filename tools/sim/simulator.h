@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "codec/common/progress.h"
 #include "format/status.h"
@@ -27,7 +28,22 @@ struct SimulateOptions {
   std::string ground_truth_spec;
   /// Units of the ground truth, recorded in the manifest.
   std::string units = "m";
+  /// Simulate colour: the ground truth's own vertex colours where it has them, else (fixed
+  /// connectivity) the albedo PaintAlbedo gives source frame 0, carried by each vertex
+  /// through the animation. The views see it through the sensor's colour model, and the
+  /// ground truth is written with it. Off: no colour anywhere.
+  bool colour = true;
 };
+
+/// Where a simulation's colour came from.
+enum class ColourSource {
+  kNone,         ///< colour off, or ground truth of changing connectivity without colours
+  kGroundTruth,  ///< the ground truth's own vertex colours
+  kAlbedo,       ///< PaintAlbedo of source frame 0
+};
+
+/// "none", "ground truth" or "albedo".
+const char* ColourSourceName(ColourSource source);
 
 /// What a simulation produced.
 struct SimulateSummary {
@@ -44,6 +60,9 @@ struct SimulateSummary {
   /// (DepthOverWidth of the box over every simulated frame).
   Eigen::Vector3d rig_direction = Eigen::Vector3d::Zero();
   double depth_over_width = 0;
+  ColourSource colour_source = ColourSource::kNone;
+  /// Each view's exposure gain (ViewExposureGain), when there is colour.
+  std::vector<double> exposure_gains;
 };
 
 /// The view file name of capture frame `frame`, view `view`: "f0007_v2.ply".
@@ -53,7 +72,8 @@ std::string SimulatedViewFileName(int frame, int view);
 /// missing): `f{frame:04}_v{view}.ply` (binary PLY, world coordinates), `manifest.json`
 /// (calibration, for CaptureSequence::Open), `simulate.json` (the options and the source
 /// frame offset) and the ground truth of those frames: `ground_truth.obj` + `.pc2` for fixed
-/// connectivity, else `ground_truth/f{frame:04}.obj`. Cameras aim at the centre of the
+/// connectivity, else `ground_truth/f{frame:04}.obj`, with vertex colours when colour is
+/// simulated (SimulateOptions::colour). Cameras aim at the centre of the
 /// bounding box over the simulated frames. Reports progress per frame ("simulating").
 StatusOr<SimulateSummary> SimulateCapture(MeshSequence& ground_truth, const std::string& out_dir,
                                           const SimulateOptions& options,

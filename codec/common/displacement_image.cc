@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "codec/common/colour_space.h"
+
 namespace meshvid {
 namespace {
 
@@ -96,6 +98,30 @@ void DisplacementLayout::Unpack(const GreyPicture& picture, const DisplacementRa
   for (std::size_t s = 0; s < count; ++s) {
     const int code = std::min<int>(picture.samples[pixel_of_sample_[s]], kDisplacementMaxCode);
     (*displacements)[s] = range.Dequantize(code);
+  }
+}
+
+ColourPicture DisplacementLayout::PackColour(std::span<const Colour> colours) const {
+  ColourPicture picture;
+  picture.width = width_;
+  picture.height = height_;
+  for (auto& plane : picture.planes) plane.assign(sample_of_pixel_.size(), 128);
+  for (std::size_t p = 0; p < sample_of_pixel_.size(); ++p) {
+    const std::uint32_t s = sample_of_pixel_[p];
+    if (s == kPadding) continue;
+    const Colour ycc = RoundTo8Bits(RgbToYCbCr(colours[s].cast<float>()));
+    for (int c = 0; c < 3; ++c) picture.planes[c][p] = ycc[c];
+  }
+  return picture;
+}
+
+void DisplacementLayout::UnpackColour(const ColourPicture& picture, std::size_t count,
+                                      std::vector<Colour>* colours) const {
+  colours->resize(count);
+  for (std::size_t s = 0; s < count; ++s) {
+    const std::uint32_t p = pixel_of_sample_[s];
+    const Eigen::Vector3f ycc(picture.planes[0][p], picture.planes[1][p], picture.planes[2][p]);
+    (*colours)[s] = RoundTo8Bits(YCbCrToRgb(ycc));
   }
 }
 

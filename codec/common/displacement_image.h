@@ -1,4 +1,5 @@
-// Packing of one frame's displacement field into a 10-bit grey picture, and back.
+// Packing of one frame's displacement field into a 10-bit grey picture, and of its colour
+// field into an 8-bit Y Cb Cr 4:4:4 picture of the same layout, and back.
 //
 // Two packings, chosen per file and stated in every group's side information:
 //
@@ -28,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include "codec/common/mesh.h"
 #include "codec/common/subdivision.h"
 #include "codec/common/video_codec.h"
 #include "format/status.h"
@@ -70,6 +72,13 @@ class DisplacementLayout {
   /// De-quantises the first `count` samples (a level's prefix) of a picture of this layout.
   void Unpack(const GreyPicture& picture, const DisplacementRange& range, std::size_t count,
               std::vector<float>* displacements) const;
+
+  /// Puts a colour field (one R G B colour per sample) into a colour picture of this layout,
+  /// as Y Cb Cr (colour_space.h); pixels that show no sample are mid-grey (128, 128, 128).
+  ColourPicture PackColour(std::span<const Colour> colours) const;
+  /// The R G B colours of the first `count` samples of a colour picture of this layout.
+  void UnpackColour(const ColourPicture& picture, std::size_t count,
+                    std::vector<Colour>* colours) const;
 
  private:
   static constexpr std::uint32_t kPadding = ~std::uint32_t{0};

@@ -2,6 +2,7 @@
 #ifndef MESHVID_CODEC_COMMON_VIDEO_CODEC_H_
 #define MESHVID_CODEC_COMMON_VIDEO_CODEC_H_
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -34,12 +35,27 @@ struct VideoPacket {
   std::vector<std::uint8_t> data;
 };
 
+/// What a video stream's pictures hold. The values are not stored in files.
+enum class PictureFormat : std::uint8_t {
+  kGrey10,   ///< one 10-bit plane (displacements): GreyPicture
+  kColour8,  ///< three full-resolution 8-bit planes, Y Cb Cr 4:4:4 (colour): ColourPicture
+};
+
 /// One grey picture: width x height samples of `bit_depth` bits, row-major, no padding.
 struct GreyPicture {
   int width = 0;
   int height = 0;
   std::int64_t pts = 0;
   std::vector<std::uint16_t> samples;
+};
+
+/// One colour picture: Y, Cb and Cr planes of width x height 8-bit samples each (4:4:4),
+/// row-major, no padding.
+struct ColourPicture {
+  int width = 0;
+  int height = 0;
+  std::int64_t pts = 0;
+  std::array<std::vector<std::uint8_t>, 3> planes;
 };
 
 }  // namespace meshvid

@@ -12,6 +12,7 @@ struct VideoDecoder::Impl {
   VideoCodec codec;
   int width = 0;
   int height = 0;
+  PictureFormat format = PictureFormat::kGrey10;
   AvCodecContextPtr context;
   AvFramePtr frame;
   AvPacketPtr packet;
@@ -36,8 +37,8 @@ const AVCodec* FindDecoder(VideoCodec codec) {
 }  // namespace
 
 StatusOr<std::unique_ptr<VideoDecoder>> VideoDecoder::Create(
-    VideoCodec codec, int width, int height, std::span<const std::uint8_t> extradata,
-    int threads) {
+    VideoCodec codec, int width, int height, std::span<const std::uint8_t> extradata, int threads,
+    PictureFormat format) {
   SilenceFfmpegLogging();
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
     return CorruptError("video size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -54,6 +55,7 @@ StatusOr<std::unique_ptr<VideoDecoder>> VideoDecoder::Create(
   impl.codec = codec;
   impl.width = width;
   impl.height = height;
+  impl.format = format;
   impl.context.reset(avcodec_alloc_context3(decoder));
   impl.frame.reset(av_frame_alloc());
   impl.packet.reset(av_packet_alloc());
@@ -79,55 +81,99 @@ StatusOr<std::unique_ptr<VideoDecoder>> VideoDecoder::Create(
   return result;
 }
 
-Status VideoDecoder::Decode(const VideoPacket& packet, std::vector<GreyPicture>* out) {
+namespace {
+
+/// Copies a decoded frame of the stream's size into `picture`, or says why it cannot.
+Status CopyFrame(const AVFrame& frame, int width, int height, GreyPicture* picture) {
+  const bool grey10 = frame.format == AV_PIX_FMT_GRAY10LE;
+  // AV1 and HEVC decoders may return 4:2:0 when the stream was coded with chroma; the
+  // luma plane is what we need either way.
+  const bool yuv10 = frame.format == AV_PIX_FMT_YUV420P10LE;
+  if ((!grey10 && !yuv10) || frame.width != width || frame.height != height) {
+    return CorruptError("decoded picture is not " + std::to_string(width) + "x" +
+                        std::to_string(height) + " 10-bit grey");
+  }
+  picture->samples.resize(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    std::memcpy(picture->samples.data() + static_cast<std::size_t>(y) * width,
+                frame.data[0] + static_cast<std::size_t>(y) * frame.linesize[0],
+                sizeof(std::uint16_t) * width);
+  }
+  return Status::Ok();
+}
+
+Status CopyFrame(const AVFrame& frame, int width, int height, ColourPicture* picture) {
+  if (frame.format != AV_PIX_FMT_YUV444P || frame.width != width || frame.height != height) {
+    return CorruptError("decoded picture is not " + std::to_string(width) + "x" +
+                        std::to_string(height) + " 8-bit 4:4:4 colour");
+  }
+  for (int p = 0; p < 3; ++p) {
+    picture->planes[p].resize(static_cast<std::size_t>(width) * height);
+    for (int y = 0; y < height; ++y) {
+      std::memcpy(picture->planes[p].data() + static_cast<std::size_t>(y) * width,
+                  frame.data[p] + static_cast<std::size_t>(y) * frame.linesize[p], width);
+    }
+  }
+  return Status::Ok();
+}
+
+constexpr PictureFormat FormatOf(const GreyPicture*) { return PictureFormat::kGrey10; }
+constexpr PictureFormat FormatOf(const ColourPicture*) { return PictureFormat::kColour8; }
+
+}  // namespace
+
+Status VideoDecoder::Send(const VideoPacket* packet) {
   Impl& impl = *impl_;
-  if (packet.data.empty()) return CorruptError("empty video packet");
-  int error = av_new_packet(impl.packet.get(), static_cast<int>(packet.data.size()));
+  if (packet == nullptr) {
+    const int error = avcodec_send_packet(impl.context.get(), nullptr);
+    if (error < 0 && error != AVERROR_EOF) return FfmpegError("cannot flush the decoder", error);
+    return Status::Ok();
+  }
+  if (packet->data.empty()) return CorruptError("empty video packet");
+  int error = av_new_packet(impl.packet.get(), static_cast<int>(packet->data.size()));
   if (error < 0) return FfmpegError("cannot allocate a video packet", error);
-  std::memcpy(impl.packet->data, packet.data.data(), packet.data.size());
-  impl.packet->pts = packet.pts;
-  impl.packet->dts = packet.dts;
-  if (packet.keyframe) impl.packet->flags |= AV_PKT_FLAG_KEY;
+  std::memcpy(impl.packet->data, packet->data.data(), packet->data.size());
+  impl.packet->pts = packet->pts;
+  impl.packet->dts = packet->dts;
+  if (packet->keyframe) impl.packet->flags |= AV_PKT_FLAG_KEY;
   error = avcodec_send_packet(impl.context.get(), impl.packet.get());
   av_packet_unref(impl.packet.get());
   if (error < 0) return CorruptError("the video stream does not decode: " + FfmpegErrorText(error));
-  return Receive(out);
+  return Status::Ok();
 }
 
-Status VideoDecoder::Flush(std::vector<GreyPicture>* out) {
-  const int error = avcodec_send_packet(impl_->context.get(), nullptr);
-  if (error < 0 && error != AVERROR_EOF) return FfmpegError("cannot flush the decoder", error);
-  return Receive(out);
+Status VideoDecoder::Decode(const VideoPacket& packet, std::vector<GreyPicture>* out) {
+  return SendAndReceive(&packet, out);
 }
 
-Status VideoDecoder::Receive(std::vector<GreyPicture>* out) {
+Status VideoDecoder::Decode(const VideoPacket& packet, std::vector<ColourPicture>* out) {
+  return SendAndReceive(&packet, out);
+}
+
+Status VideoDecoder::Flush(std::vector<GreyPicture>* out) { return SendAndReceive(nullptr, out); }
+
+Status VideoDecoder::Flush(std::vector<ColourPicture>* out) { return SendAndReceive(nullptr, out); }
+
+template <typename Picture>
+Status VideoDecoder::SendAndReceive(const VideoPacket* packet, std::vector<Picture>* out) {
   Impl& impl = *impl_;
+  if (FormatOf(static_cast<const Picture*>(nullptr)) != impl.format) {
+    return InvalidArgumentError("pictures asked for in another format than the stream's");
+  }
+  MESHVID_RETURN_IF_ERROR(Send(packet));
   while (true) {
     const int error = avcodec_receive_frame(impl.context.get(), impl.frame.get());
     if (error == AVERROR(EAGAIN) || error == AVERROR_EOF) return Status::Ok();
     if (error < 0) return CorruptError("the video stream does not decode: " + FfmpegErrorText(error));
     const AVFrame& frame = *impl.frame;
-    const bool grey10 = frame.format == AV_PIX_FMT_GRAY10LE;
-    // AV1 and HEVC decoders may return 4:2:0 when the stream was coded with chroma; the
-    // luma plane is what we need either way.
-    const bool yuv10 = frame.format == AV_PIX_FMT_YUV420P10LE;
-    if ((!grey10 && !yuv10) || frame.width != impl.width || frame.height != impl.height) {
-      av_frame_unref(impl.frame.get());
-      return CorruptError("decoded picture is not " + std::to_string(impl.width) + "x" +
-                          std::to_string(impl.height) + " 10-bit grey");
-    }
-    GreyPicture picture;
+    Picture picture;
     picture.width = impl.width;
     picture.height = impl.height;
     picture.pts = frame.best_effort_timestamp != AV_NOPTS_VALUE ? frame.best_effort_timestamp
                                                                 : frame.pts;
-    picture.samples.resize(static_cast<std::size_t>(impl.width) * impl.height);
-    for (int y = 0; y < impl.height; ++y) {
-      std::memcpy(picture.samples.data() + static_cast<std::size_t>(y) * impl.width,
-                  frame.data[0] + static_cast<std::size_t>(y) * frame.linesize[0],
-                  sizeof(std::uint16_t) * impl.width);
-    }
+    const Status copied = CopyFrame(frame, impl.width, impl.height, &picture);
     av_frame_unref(impl.frame.get());
+    MESHVID_RETURN_IF_ERROR(copied);
     out->push_back(std::move(picture));
   }
 }

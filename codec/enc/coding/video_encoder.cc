@@ -111,7 +111,9 @@ StatusOr<std::unique_ptr<VideoEncoder>> VideoEncoder::Create(const VideoEncoding
   AVCodecContext* context = impl.context.get();
   context->width = settings.width;
   context->height = settings.height;
-  context->pix_fmt = AV_PIX_FMT_GRAY10LE;
+  const AVPixelFormat pixel_format =
+      settings.format == PictureFormat::kColour8 ? AV_PIX_FMT_YUV444P : AV_PIX_FMT_GRAY10LE;
+  context->pix_fmt = pixel_format;
   context->framerate = av_d2q(settings.frame_rate, 100000);
   context->time_base = av_inv_q(context->framerate);
   context->thread_count = settings.threads;
@@ -124,7 +126,7 @@ StatusOr<std::unique_ptr<VideoEncoder>> VideoEncoder::Create(const VideoEncoding
     result->extradata_.assign(context->extradata, context->extradata + context->extradata_size);
   }
   AVFrame* frame = impl.frame.get();
-  frame->format = AV_PIX_FMT_GRAY10LE;
+  frame->format = pixel_format;
   frame->width = settings.width;
   frame->height = settings.height;
   const int alloc_error = av_frame_get_buffer(frame, 0);
@@ -132,29 +134,65 @@ StatusOr<std::unique_ptr<VideoEncoder>> VideoEncoder::Create(const VideoEncoding
   return result;
 }
 
-Status VideoEncoder::Encode(const GreyPicture& picture, bool group_start,
-                            std::vector<VideoPacket>* out) {
-  Impl& impl = *impl_;
-  const VideoEncoding& s = impl.settings;
-  if (picture.width != s.width || picture.height != s.height ||
-      picture.samples.size() != static_cast<std::size_t>(s.width) * s.height) {
+Status VideoEncoder::PrepareFrame(int width, int height, std::size_t plane_size,
+                                  PictureFormat format) {
+  const VideoEncoding& s = impl_->settings;
+  if (format != s.format) {
+    return InvalidArgumentError(format == PictureFormat::kColour8
+                                    ? "a colour picture sent to a grey video encoder"
+                                    : "a grey picture sent to a colour video encoder");
+  }
+  if (width != s.width || height != s.height ||
+      plane_size != static_cast<std::size_t>(s.width) * s.height) {
     return InvalidArgumentError("picture is not " + std::to_string(s.width) + "x" +
                                 std::to_string(s.height));
   }
-  AVFrame* frame = impl.frame.get();
-  int error = av_frame_make_writable(frame);
+  const int error = av_frame_make_writable(impl_->frame.get());
   if (error < 0) return FfmpegError("cannot write a video frame", error);
-  for (int y = 0; y < s.height; ++y) {
-    std::memcpy(frame->data[0] + static_cast<std::size_t>(y) * frame->linesize[0],
-                picture.samples.data() + static_cast<std::size_t>(y) * s.width,
-                sizeof(std::uint16_t) * s.width);
-  }
-  frame->pts = picture.pts;
+  return Status::Ok();
+}
+
+Status VideoEncoder::SendFrame(std::int64_t pts, bool group_start, std::vector<VideoPacket>* out) {
+  AVFrame* frame = impl_->frame.get();
+  frame->pts = pts;
   frame->pict_type = group_start ? AV_PICTURE_TYPE_I : AV_PICTURE_TYPE_NONE;
   frame->key_frame = group_start ? 1 : 0;
-  error = avcodec_send_frame(impl.context.get(), frame);
+  const int error = avcodec_send_frame(impl_->context.get(), frame);
   if (error < 0) return FfmpegError("the video encoder rejected a picture", error);
   return Receive(out);
+}
+
+Status VideoEncoder::Encode(const GreyPicture& picture, bool group_start,
+                            std::vector<VideoPacket>* out) {
+  MESHVID_RETURN_IF_ERROR(
+      PrepareFrame(picture.width, picture.height, picture.samples.size(), PictureFormat::kGrey10));
+  AVFrame* frame = impl_->frame.get();
+  for (int y = 0; y < picture.height; ++y) {
+    std::memcpy(frame->data[0] + static_cast<std::size_t>(y) * frame->linesize[0],
+                picture.samples.data() + static_cast<std::size_t>(y) * picture.width,
+                sizeof(std::uint16_t) * picture.width);
+  }
+  return SendFrame(picture.pts, group_start, out);
+}
+
+Status VideoEncoder::Encode(const ColourPicture& picture, bool group_start,
+                            std::vector<VideoPacket>* out) {
+  for (int p = 1; p < 3; ++p) {
+    if (picture.planes[p].size() != picture.planes[0].size()) {
+      return InvalidArgumentError("a colour picture's planes differ in size");
+    }
+  }
+  MESHVID_RETURN_IF_ERROR(PrepareFrame(picture.width, picture.height, picture.planes[0].size(),
+                                       PictureFormat::kColour8));
+  AVFrame* frame = impl_->frame.get();
+  for (int p = 0; p < 3; ++p) {
+    for (int y = 0; y < picture.height; ++y) {
+      std::memcpy(frame->data[p] + static_cast<std::size_t>(y) * frame->linesize[p],
+                  picture.planes[p].data() + static_cast<std::size_t>(y) * picture.width,
+                  picture.width);
+    }
+  }
+  return SendFrame(picture.pts, group_start, out);
 }
 
 Status VideoEncoder::Flush(std::vector<VideoPacket>* out) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <tbb/blocked_range.h>
@@ -9,11 +10,36 @@
 
 namespace meshvid {
 
+namespace {
+
+/// The colour of `view` where `hit` struck it: its triangle's vertex colours, blended.
+Eigen::Vector3f HitColour(const TriangleMesh& view, const ShotHit& hit) {
+  const Triangle& t = view.triangles[hit.triangle];
+  return (1.0f - hit.u - hit.v) * view.colours[t[0]].cast<float>() +
+         hit.u * view.colours[t[1]].cast<float>() + hit.v * view.colours[t[2]].cast<float>();
+}
+
+/// |cos| of the angle at which a camera (or, without one, the shot) sees `hit`.
+float SeenCos(const ShotHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+              const ViewCalibration* camera) {
+  const Eigen::Vector3f point = origin + hit.distance * direction;
+  const Eigen::Vector3f ray =
+      camera != nullptr
+          ? Eigen::Vector3f(point - camera->world_from_camera.translation().cast<float>())
+          : direction;
+  const float length = ray.norm();
+  return length > 0 ? std::abs(hit.normal.dot(ray)) / length : 0.0f;
+}
+
+}  // namespace
+
 StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision,
                                            std::span<const Eigen::Vector3f> positions,
                                            std::span<const TriangleMesh> views,
                                            const DetailOptions& options,
-                                           std::vector<float>* displacements) {
+                                           std::vector<float>* displacements,
+                                           std::span<const ViewCalibration> cameras,
+                                           ColourObservations* colours) {
   if (positions.size() != subdivision.base_vertex_count()) {
     return InvalidArgumentError("posed base has " + std::to_string(positions.size()) +
                                 " vertices, the lattice " +
@@ -25,6 +51,8 @@ StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision
                        &directions);
   const std::size_t samples = origins.size();
   std::vector<std::vector<float>> per_view(views.size());
+  if (colours != nullptr) colours->Reset(views.size(), samples);
+  std::vector<ShotHit> hits_of_view;
   for (std::size_t v = 0; v < views.size(); ++v) {
     if (views[v].empty()) {
       per_view[v].assign(samples, kNoHit);
@@ -32,7 +60,23 @@ StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision
     }
     MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<ShootingTarget> target,
                              ShootingTarget::Create(views[v]));
-    target->ShootAll(origins, directions, options.shot, &per_view[v]);
+    if (colours == nullptr || views[v].colours.empty()) {
+      target->ShootAll(origins, directions, options.shot, &per_view[v]);
+      continue;
+    }
+    target->ShootAllHits(origins, directions, options.shot, &hits_of_view);
+    const ViewCalibration* camera =
+        v < cameras.size() && cameras[v].has_extrinsics ? &cameras[v] : nullptr;
+    per_view[v].resize(samples);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 4096), [&](const auto& range) {
+      for (std::size_t i = range.begin(); i < range.end(); ++i) {
+        const ShotHit& hit = hits_of_view[i];
+        per_view[v][i] = hit.distance;
+        if (!hit.hit()) continue;
+        colours->colour[v][i] = HitColour(views[v], hit);
+        colours->weight[v][i] = ViewingWeight(SeenCos(hit, origins[i], directions[i], camera));
+      }
+    });
   }
   displacements->assign(samples, kNoHit);
   std::size_t hits = 0;
@@ -56,6 +100,18 @@ StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision
     }
     (*displacements)[i] = count > 0 ? float(sum / count) : median;
     ++hits;
+    if (colours != nullptr) {
+      // Colour only from the hits the displacement kept (if it kept none, the hits nearest
+      // the median it took instead).
+      float tolerance = options.outlier_distance;
+      if (count == 0) {
+        tolerance = std::numeric_limits<float>::infinity();
+        for (float d : found) tolerance = std::min(tolerance, std::abs(d - median));
+      }
+      for (std::size_t v = 0; v < per_view.size(); ++v) {
+        if (!(std::abs(per_view[v][i] - median) <= tolerance)) colours->weight[v][i] = 0;
+      }
+    }
   }
   return hits;
 }

@@ -10,8 +10,10 @@
 
 #include <Eigen/Core>
 
+#include "codec/common/camera.h"
 #include "codec/common/mesh.h"
 #include "codec/common/subdivision.h"
+#include "codec/enc/key_groups/colour.h"
 #include "codec/enc/tracking/normal_shooting.h"
 #include "format/status.h"
 
@@ -27,11 +29,18 @@ struct DetailOptions {
 /// `positions` are the posed base vertices (a decoder's: decoded base, de-quantised
 /// transforms), `views` the frame's range meshes. Writes one value per sample into
 /// `displacements`, kNoHit where no view saw the surface. Returns the number of hits.
+///
+/// With `colours`, also records what each view's colour is where its shot hit, for the views
+/// with vertex colours and the hits the displacement kept (within the outlier distance),
+/// weighted by ViewingWeight of the angle at which the view sees the hit: from its camera
+/// centre when `cameras` gives one (cameras[v] with extrinsics), else along the shot.
 StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision,
                                            std::span<const Eigen::Vector3f> positions,
                                            std::span<const TriangleMesh> views,
                                            const DetailOptions& options,
-                                           std::vector<float>* displacements);
+                                           std::vector<float>* displacements,
+                                           std::span<const ViewCalibration> cameras = {},
+                                           ColourObservations* colours = nullptr);
 
 /// The neighbour graph of the finest lattice (compressed rows), for spatial hole filling.
 struct SampleGraph {

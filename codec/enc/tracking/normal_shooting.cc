@@ -11,17 +11,16 @@ namespace meshvid {
 namespace {
 
 /// Distance to the first hit along `direction` within (0, max_t] with an acceptable angle, or
-/// infinity; `normal` receives the unnormalised normal of the triangle hit.
+/// infinity; `hit_out` receives the hit (its normal unnormalised).
 float FirstHit(const EmbreeScene& scene, const Eigen::Vector3f& origin,
-               const Eigen::Vector3f& direction, float max_t, float min_abs_cos,
-               Eigen::Vector3f* normal_out) {
+               const Eigen::Vector3f& direction, float max_t, float min_abs_cos, RayHit* hit_out) {
   const RayHit hit = scene.Intersect(origin, direction, 0.0f, max_t);
   if (!hit.hit()) return std::numeric_limits<float>::infinity();
   const float denominator = hit.normal.norm() * direction.norm();
   if (!(denominator > 0)) return std::numeric_limits<float>::infinity();
   const float abs_cos = std::abs(hit.normal.dot(direction)) / denominator;
   if (abs_cos < min_abs_cos) return std::numeric_limits<float>::infinity();
-  *normal_out = hit.normal;
+  *hit_out = hit;
   return hit.t;
 }
 
@@ -39,21 +38,21 @@ StatusOr<std::unique_ptr<ShootingTarget>> ShootingTarget::Create(const TriangleM
 
 ShotHit ShootingTarget::ShootHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                                  const ShotLimits& limits) const {
-  Eigen::Vector3f forward_normal, backward_normal;
-  const float forward = FirstHit(*scene_, origin, direction, limits.max_distance,
-                                 limits.min_abs_cos, &forward_normal);
+  RayHit forward_hit, backward_hit;
+  const float forward =
+      FirstHit(*scene_, origin, direction, limits.max_distance, limits.min_abs_cos, &forward_hit);
   const float backward =
       FirstHit(*scene_, origin, -direction, std::min(forward, limits.max_distance),
-               limits.min_abs_cos, &backward_normal);
+               limits.min_abs_cos, &backward_hit);
   ShotHit hit;
   if (std::isinf(forward) && std::isinf(backward)) return hit;
-  if (forward <= backward) {
-    hit.distance = forward;
-    hit.normal = forward_normal.normalized();
-  } else {
-    hit.distance = -backward;
-    hit.normal = backward_normal.normalized();
-  }
+  const bool ahead = forward <= backward;
+  const RayHit& nearest = ahead ? forward_hit : backward_hit;
+  hit.distance = ahead ? forward : -backward;
+  hit.normal = nearest.normal.normalized();
+  hit.triangle = nearest.triangle;
+  hit.u = nearest.u;
+  hit.v = nearest.v;
   return hit;
 }
 
@@ -70,6 +69,18 @@ void ShootingTarget::ShootAll(std::span<const Eigen::Vector3f> origins,
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i < range.end(); ++i) {
                         (*distances)[i] = Shoot(origins[i], directions[i], limits);
+                      }
+                    });
+}
+
+void ShootingTarget::ShootAllHits(std::span<const Eigen::Vector3f> origins,
+                                  std::span<const Eigen::Vector3f> directions,
+                                  const ShotLimits& limits, std::vector<ShotHit>* hits) const {
+  hits->resize(origins.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                        (*hits)[i] = ShootHit(origins[i], directions[i], limits);
                       }
                     });
 }

@@ -3,6 +3,7 @@
 #ifndef MESHVID_CODEC_ENC_TRACKING_NORMAL_SHOOTING_H_
 #define MESHVID_CODEC_ENC_TRACKING_NORMAL_SHOOTING_H_
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <span>
@@ -27,11 +28,15 @@ struct ShotLimits {
 /// What a shot sees as a miss.
 inline constexpr float kNoHit = std::numeric_limits<float>::quiet_NaN();
 
-/// A shot's result: the signed distance along the direction (kNoHit on a miss) and the unit
-/// normal of the triangle hit (its sign is the triangle's winding).
+/// A shot's result: the signed distance along the direction (kNoHit on a miss), the unit
+/// normal of the triangle hit (its sign is the triangle's winding), and where on which
+/// triangle it hit (barycentric weights u, v of the triangle's corners 1 and 2).
 struct ShotHit {
   float distance = kNoHit;
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+  std::uint32_t triangle = RayHit::kNone;
+  float u = 0, v = 0;
+  bool hit() const { return triangle != RayHit::kNone; }
 };
 
 /// An Embree scene over one triangle mesh (the views of a frame may be appended into one).
@@ -58,6 +63,11 @@ class ShootingTarget {
   void ShootAll(std::span<const Eigen::Vector3f> origins,
                 std::span<const Eigen::Vector3f> directions, const ShotLimits& limits,
                 std::vector<float>* distances) const;
+
+  /// ShootHit() for many rays, in parallel; `hits` is resized to origins.size().
+  void ShootAllHits(std::span<const Eigen::Vector3f> origins,
+                    std::span<const Eigen::Vector3f> directions, const ShotLimits& limits,
+                    std::vector<ShotHit>* hits) const;
 
   std::size_t triangle_count() const { return triangle_count_; }
 

@@ -2,7 +2,9 @@
 // the displacement layout, both ways.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "codec/common/colour_space.h"
@@ -61,8 +63,14 @@ TEST_P(ColourPackingTest, EverySampleComesBackAndPaddingIsGrey) {
     }
   }
   // A level's prefix.
-  layout.UnpackColour(picture, 9, &back);
-  EXPECT_EQ(back.size(), 9u);
+  std::vector<Colour> prefix;
+  layout.UnpackColour(picture, 9, &prefix);
+  ASSERT_EQ(prefix.size(), 9u);
+  EXPECT_TRUE(std::equal(prefix.begin(), prefix.end(), back.begin()));
+  // A field shorter than the lattice leaves the samples past its end grey.
+  const ColourPicture short_picture = layout.PackColour(std::span<const Colour>(colours.data(), 9));
+  layout.UnpackColour(short_picture, samples, &back);
+  EXPECT_EQ(back[samples - 1], Colour(128, 128, 128));
   // Lattice order leaves the picture's last pixels to padding: mid-grey.
   if (GetParam() == DisplacementPacking::kLatticeOrder) {
     ASSERT_LT(samples, picture.planes[0].size());

@@ -108,7 +108,7 @@ ColourPicture DisplacementLayout::PackColour(std::span<const Colour> colours) co
   for (auto& plane : picture.planes) plane.assign(sample_of_pixel_.size(), 128);
   for (std::size_t p = 0; p < sample_of_pixel_.size(); ++p) {
     const std::uint32_t s = sample_of_pixel_[p];
-    if (s == kPadding) continue;
+    if (s == kPadding || s >= colours.size()) continue;
     const Colour ycc = RoundTo8Bits(RgbToYCbCr(colours[s].cast<float>()));
     for (int c = 0; c < 3; ++c) picture.planes[c][p] = ycc[c];
   }

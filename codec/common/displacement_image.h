@@ -74,7 +74,8 @@ class DisplacementLayout {
               std::vector<float>* displacements) const;
 
   /// Puts a colour field (one R G B colour per sample) into a colour picture of this layout,
-  /// as Y Cb Cr (colour_space.h); pixels that show no sample are mid-grey (128, 128, 128).
+  /// as Y Cb Cr (colour_space.h); pixels that show no sample, or a sample past the end of
+  /// `colours`, are mid-grey (128, 128, 128).
   ColourPicture PackColour(std::span<const Colour> colours) const;
   /// The R G B colours of the first `count` samples of a colour picture of this layout.
   void UnpackColour(const ColourPicture& picture, std::size_t count,

@@ -103,7 +103,9 @@ Status CopyFrame(const AVFrame& frame, int width, int height, GreyPicture* pictu
 }
 
 Status CopyFrame(const AVFrame& frame, int width, int height, ColourPicture* picture) {
-  if (frame.format != AV_PIX_FMT_YUV444P || frame.width != width || frame.height != height) {
+  // Full-range 4:4:4 may come back under the older full-range name.
+  const bool yuv444 = frame.format == AV_PIX_FMT_YUV444P || frame.format == AV_PIX_FMT_YUVJ444P;
+  if (!yuv444 || frame.width != width || frame.height != height) {
     return CorruptError("decoded picture is not " + std::to_string(width) + "x" +
                         std::to_string(height) + " 8-bit 4:4:4 colour");
   }

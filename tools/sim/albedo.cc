@@ -19,7 +19,8 @@ Eigen::Vector3d HueColour(double hue) {
   return rgb;
 }
 
-/// A smooth step from 0 to 1 over a band around each integer (a checker with soft edges).
+/// A square wave of period 1 with soft edges: 0 near the integers, 1 near the half-integers,
+/// stepping smoothly over a band around each quarter (k + 0.25, k + 0.75).
 double SoftSquareWave(double x) {
   constexpr double kEdge = 0.15;  // fraction of a cell taken by the edge
   const double f = x - std::floor(x);

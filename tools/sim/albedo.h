@@ -12,9 +12,10 @@ namespace meshvid {
 
 /// Paints every vertex of `reference` (the ground truth in its reference pose) from its
 /// position relative to the mesh's bounding box: a hue that drifts slowly across the
-/// subject, modulated by a soft 3D checker of about 1/8 of the box's largest side, so the
-/// colour has both smooth gradients and edges. Every channel stays in [24, 224], which
-/// leaves room for a camera's exposure gain before 8 bits clip. Deterministic.
+/// subject, modulated by a soft 3D checker whose squares are 1/16 of the box's largest side,
+/// so the colour has both smooth gradients and edges. Channels stay within about [70, 210]
+/// (never outside [24, 224]), which leaves room for a camera's exposure gain before 8 bits
+/// clip. Deterministic.
 std::vector<Colour> PaintAlbedo(const TriangleMesh& reference);
 
 }  // namespace meshvid

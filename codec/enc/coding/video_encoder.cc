@@ -114,6 +114,14 @@ StatusOr<std::unique_ptr<VideoEncoder>> VideoEncoder::Create(const VideoEncoding
   const AVPixelFormat pixel_format =
       settings.format == PictureFormat::kColour8 ? AV_PIX_FMT_YUV444P : AV_PIX_FMT_GRAY10LE;
   context->pix_fmt = pixel_format;
+  if (settings.format == PictureFormat::kColour8) {
+    // Stated in the stream so that other players read the colour as it was coded
+    // (colour_space.h).
+    context->color_range = AVCOL_RANGE_JPEG;
+    context->colorspace = AVCOL_SPC_BT709;
+    context->color_primaries = AVCOL_PRI_BT709;
+    context->color_trc = AVCOL_TRC_BT709;
+  }
   context->framerate = av_d2q(settings.frame_rate, 100000);
   context->time_base = av_inv_q(context->framerate);
   context->thread_count = settings.threads;

@@ -9,10 +9,12 @@ namespace {
 
 /// Rounds of alternating between fused luminance and gains; each halves the error or better.
 constexpr int kGainRounds = 6;
-/// Channels outside [kDarkest, kBrightest] do not scale with exposure (black, clipping).
+/// Samples darker than kDarkest (mean of the channels) are mostly noise, and a channel above
+/// kBrightest may be clipped: neither scales with exposure.
 constexpr float kDarkest = 4.0f;
 constexpr float kBrightest = 251.0f;
 
+/// The plain mean of the channels: the gains are one per view, for all channels alike.
 float Luminance(const Eigen::Vector3f& c) { return (c.x() + c.y() + c.z()) / 3.0f; }
 
 }  // namespace
@@ -35,7 +37,7 @@ std::vector<double> EstimateExposureGains(const ColourObservations& observations
     for (std::size_t v = 0; v < views; ++v) {
       if (!(observations.weight[v][s] > 0)) continue;
       const Eigen::Vector3f& c = observations.colour[v][s];
-      linear = linear && c.minCoeff() >= kDarkest && c.maxCoeff() <= kBrightest;
+      linear = linear && Luminance(c) >= kDarkest && c.maxCoeff() <= kBrightest;
       ++seen;
     }
     if (seen >= 2 && linear) shared.push_back(s);
@@ -88,7 +90,8 @@ void FuseColours(const ColourObservations& observations, std::span<const double>
     for (std::size_t v = 0; v < views; ++v) {
       const float w = observations.weight[v][s];
       if (!(w > 0)) continue;
-      sum += (w / gains[v]) * observations.colour[v][s].cast<double>();
+      const double gain = v < gains.size() ? gains[v] : 1.0;
+      sum += (w / gain) * observations.colour[v][s].cast<double>();
       weights += w;
     }
     if (!(weights > 0)) continue;

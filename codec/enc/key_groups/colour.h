@@ -30,14 +30,16 @@ struct ColourObservations {
 inline float ViewingWeight(float abs_cos) { return abs_cos * abs_cos; }
 
 /// Each view's exposure gain relative to the others, from the samples two or more views see:
-/// the least-squares gains of luminance against the fused luminance, alternated a few times,
-/// normalised to a geometric mean of 1 over the views that overlap another. A view that
-/// overlaps none keeps gain 1. Samples near black or near saturation (a channel below 4 or
-/// above 251) do not count: they do not scale with exposure.
+/// the least-squares gains of luminance (the mean of the channels) against the fused
+/// luminance, alternated a few times, normalised to a geometric mean of 1 over the views that
+/// overlap another. A view that overlaps none keeps gain 1. A sample does not count where a
+/// view sees it near black (luminance below 4) or possibly clipped (a channel above 251):
+/// there it does not scale with exposure. The gains are estimated from one frame.
 std::vector<double> EstimateExposureGains(const ColourObservations& observations);
 
-/// Fuses the views' colours per sample, each divided by its view's gain and weighted by its
-/// weight: three channels (0..255), kNoHit (NaN) where no view saw the sample.
+/// Fuses the views' colours per sample, each divided by its view's gain (1 for a view past
+/// the end of `gains`) and weighted by its weight: three channels (0..255), NaN where no view
+/// saw the sample.
 void FuseColours(const ColourObservations& observations, std::span<const double> gains,
                  std::array<std::vector<float>, 3>* channels);
 

@@ -55,7 +55,7 @@ class ShootingTarget {
   float Shoot(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               const ShotLimits& limits) const;
 
-  /// Shoot(), also returning the normal of the surface hit.
+  /// Shoot(), also returning the normal of the surface hit and where on which triangle.
   ShotHit ShootHit(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
                    const ShotLimits& limits) const;
 

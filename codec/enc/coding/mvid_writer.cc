@@ -244,12 +244,13 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
       colour_pictures[f] = layout_.PackColour(colours[f]);
       colour_pictures[f].pts = static_cast<std::int64_t>(f);
     }
-    // FFV1's configuration record is the displacement stream's; the colour stream's is
-    // stated beside it (the side information's colour_config).
-    std::vector<std::uint8_t> colour_extradata;
+    // The colour video carries no configuration record (FFV1 codes it as version 1, which
+    // states its parameters in every frame).
+    std::vector<std::uint8_t> no_record;
     MESHVID_RETURN_IF_ERROR(EncodePictures(colour_pictures, PictureFormat::kColour8,
-                                           settings_.colour_qp, &colour_extradata,
-                                           &gof.packets[1], &stats_.colour_bytes));
+                                           settings_.colour_qp, &no_record, &gof.packets[1],
+                                           &stats_.colour_bytes));
+    if (!no_record.empty()) return InternalError("the colour video needs a configuration record");
   }
 
   gof.gof_index = next_gof_;

@@ -140,7 +140,7 @@ TEST(EncodeCliTest, ColoursInTheViewsLeaveTheFileAsItWas) {
   ASSERT_EQ(coloured->colours.size(), coloured->vertex_count());
   EXPECT_EQ(coloured->colours[300], Colour(300 % 256, 1, 40));
   const testing::CliRun run =
-      testing::RunMeshvid(encode + "'" + dir.File("coloured.mvid") + "'", dir);
+      testing::RunMeshvid(encode + "--no-colour '" + dir.File("coloured.mvid") + "'", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::ReadFile(dir.File("plain.mvid")),
             testing::ReadFile(dir.File("coloured.mvid")));

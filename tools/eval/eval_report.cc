@@ -33,6 +33,7 @@ nlohmann::json MetricsToJson(const FrameMetrics& m) {
     j["cb_psnr"] = JsonNumber(m.cb_psnr);
     j["cr_psnr"] = JsonNumber(m.cr_psnr);
     j["yuv_psnr"] = JsonNumber(m.yuv_psnr);
+    j["y_psnr_test_to_ref"] = JsonNumber(m.y_psnr_test_to_ref);
   }
   return j;
 }

@@ -69,6 +69,7 @@ FrameMetrics MeanFrameMetrics(const std::vector<FrameMetrics>& frames, double pe
       mean.cb_psnr += std::min(f.cb_psnr, kFramePsnrCapDb) / n;
       mean.cr_psnr += std::min(f.cr_psnr, kFramePsnrCapDb) / n;
       mean.yuv_psnr += std::min(f.yuv_psnr, kFramePsnrCapDb) / n;
+      mean.y_psnr_test_to_ref += std::min(f.y_psnr_test_to_ref, kFramePsnrCapDb) / n;
     }
   }
   return mean;

@@ -183,6 +183,7 @@ StatusOr<FrameMetrics> ComputeFrameMetrics(const TriangleMesh& ref, const Triang
     m.cb_psnr = ColourPsnr(mse[1]);
     m.cr_psnr = ColourPsnr(mse[2]);
     m.yuv_psnr = (6.0 * m.y_psnr + m.cb_psnr + m.cr_psnr) / 8.0;
+    m.y_psnr_test_to_ref = ColourPsnr(test_to_ref.colour_mse[0]);
   }
   return m;
 }

@@ -51,6 +51,9 @@ struct FrameMetrics {
   double cr_psnr = 0;
   /// (6 Y + Cb + Cr) / 8 of the three PSNRs, as MPEG weighs them.
   double yuv_psnr = 0;
+  /// Y PSNR of the test surface's colour against the reference's (test->ref only): the
+  /// colour where the test surface is, whatever the reference has that it lacks.
+  double y_psnr_test_to_ref = 0;
 };
 
 /// 10 log10(3 peak^2 / mse), the pc_error PSNR; +infinity when mse is 0.

@@ -49,10 +49,7 @@ std::vector<Eigen::Vector3f> SampleColours(const TriangleMesh& mesh,
       const Eigen::Vector3f w =
           BarycentricWeights(samples.points[i], mesh.positions[t[0]], mesh.positions[t[1]],
                              mesh.positions[t[2]]);
-      const Eigen::Vector3f rgb = w[0] * mesh.colours[t[0]].cast<float>() +
-                                  w[1] * mesh.colours[t[1]].cast<float>() +
-                                  w[2] * mesh.colours[t[2]].cast<float>();
-      colours[i] = RgbToYCbCr(rgb);
+      colours[i] = RgbToYCbCr(BlendColours(mesh.colours, t, w[1], w[2]));
     }
   });
   return colours;

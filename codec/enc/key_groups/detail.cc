@@ -12,13 +12,6 @@ namespace meshvid {
 
 namespace {
 
-/// The colour of `view` where `hit` struck it: its triangle's vertex colours, blended.
-Eigen::Vector3f HitColour(const TriangleMesh& view, const ShotHit& hit) {
-  const Triangle& t = view.triangles[hit.triangle];
-  return (1.0f - hit.u - hit.v) * view.colours[t[0]].cast<float>() +
-         hit.u * view.colours[t[1]].cast<float>() + hit.v * view.colours[t[2]].cast<float>();
-}
-
 /// |cos| of the angle at which a camera (or, without one, the shot) sees `hit`.
 float SeenCos(const ShotHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               const ViewCalibration* camera) {
@@ -73,7 +66,8 @@ StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision
         const ShotHit& hit = hits_of_view[i];
         per_view[v][i] = hit.distance;
         if (!hit.hit()) continue;
-        colours->colour[v][i] = HitColour(views[v], hit);
+        colours->colour[v][i] =
+            BlendColours(views[v].colours, views[v].triangles[hit.triangle], hit.u, hit.v);
         colours->weight[v][i] = ViewingWeight(SeenCos(hit, origins[i], directions[i], camera));
       }
     });

@@ -11,6 +11,7 @@
 
 #include "codec/common/triangle_distance.h"
 #include "tests/test_util.h"
+#include "tools/io/capture.h"
 #include "tools/io/mesh_io.h"
 #include "tools/io/mesh_sequence.h"
 
@@ -41,11 +42,28 @@ Eigen::Vector3f ColourNearest(const TriangleMesh& mesh, const Eigen::Vector3f& p
   return colour;
 }
 
+/// The mean absolute difference, over every 7th vertex of `mesh` and its three channels,
+/// between its colour and `truth`'s at the nearest surface point.
+double MeanColourError(const TriangleMesh& mesh, const TriangleMesh& truth) {
+  EXPECT_EQ(mesh.colours.size(), mesh.vertex_count());
+  double error = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < mesh.colours.size(); i += 7) {
+    error += (mesh.colours[i].cast<float>() - ColourNearest(truth, mesh.positions[i]))
+                 .cwiseAbs()
+                 .sum() /
+             3.0;
+    ++count;
+  }
+  EXPECT_GT(count, 100);
+  return count > 0 ? error / count : 0;
+}
+
 TEST(ColourCliTest, ACapturesColourIsCodedAndDecoded) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
   testing::CliRun run = testing::RunMeshvid(
-      "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:4 --res 160x120 -q", dir);
+      "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:4 --res 160x120 -q ", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string encode = "encode '" + dir.File("cap/manifest.json") + "' -q ";
   run = testing::RunMeshvid(encode + "-o '" + dir.File("colour.mvid") + "'", dir);
@@ -75,19 +93,22 @@ TEST(ColourCliTest, ACapturesColourIsCodedAndDecoded) {
   auto frame = (*truth)->Frame(2);
   ASSERT_TRUE(frame.ok());
   ASSERT_FALSE(frame->colours.empty());
-  double error = 0;
-  int count = 0;
-  for (std::size_t i = 0; i < decoded->vertex_count(); i += 7) {
-    error += (decoded->colours[i].cast<float>() - ColourNearest(*frame, decoded->positions[i]))
-                 .cwiseAbs()
-                 .sum() /
-             3.0;
-    ++count;
-  }
-  ASSERT_GT(count, 100);
-  error /= count;
-  std::printf("mean colour error of the decoded frame: %.2f units of 8 bits\n", error);
-  EXPECT_LT(error, 12.0);
+  // The views' own colour, each on its own exposure and with its own noise, is the input's
+  // error; the decoded colour, fused on one exposure, is to be much closer to the truth (here
+  // 6.4 units against the views' 18.8; with neither exposure spread nor noise, the views are
+  // 0.8 units off and the decoded frame 6.2: what the coding and the sampling cost at
+  // 160 x 120).
+  auto capture = CaptureSequence::Open(dir.File("cap/manifest.json"));
+  ASSERT_TRUE(capture.ok()) << capture.status().ToString();
+  auto views = (*capture)->LoadFrame(2);
+  ASSERT_TRUE(views.ok()) << views.status().ToString();
+  double view_error = 0;
+  for (const TriangleMesh& view : *views) view_error += MeanColourError(view, *frame);
+  view_error /= views->size();
+  const double decoded_error = MeanColourError(*decoded, *frame);
+  std::printf("mean colour error against the truth, units of 8 bits: views %.2f, decoded %.2f\n",
+              view_error, decoded_error);
+  EXPECT_LT(decoded_error, 0.5 * view_error);
 
   // The geometry-only file decodes without colour.
   run = testing::RunMeshvid("decode '" + dir.File("grey.mvid") + "' --frames 2:3 --level 2 -q -o '" +

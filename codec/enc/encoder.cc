@@ -139,7 +139,12 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
     *filled += FillDisplacementGroup(graph, &last_measured, &displacements);
     std::vector<std::vector<Colour>> colours(colour ? chunk_end - chunk_first : 0);
     if (colour) {
-      for (int c = 0; c < 3; ++c) FillDisplacementGroup(graph, &last_colour[c], &channels[c]);
+      // A part no view saw in the group takes the average colour, not black.
+      const UnreachedFill average_colour{
+          .spread_everywhere = true, .frame_mean = true, .no_values = 128};
+      for (int c = 0; c < 3; ++c) {
+        FillDisplacementGroup(graph, &last_colour[c], &channels[c], average_colour);
+      }
       for (std::size_t k = 0; k < colours.size(); ++k) {
         colours[k].resize(channels[0][k].size());
         for (std::size_t i = 0; i < colours[k].size(); ++i) {

@@ -49,10 +49,9 @@ double MeanColourError(const TriangleMesh& mesh, const TriangleMesh& truth) {
   double error = 0;
   int count = 0;
   for (std::size_t i = 0; i < mesh.colours.size(); i += 7) {
-    error += (mesh.colours[i].cast<float>() - ColourNearest(truth, mesh.positions[i]))
-                 .cwiseAbs()
-                 .sum() /
-             3.0;
+    error +=
+        (mesh.colours[i].cast<float>() - ColourNearest(truth, mesh.positions[i])).cwiseAbs().sum() /
+        3.0;
     ++count;
   }
   EXPECT_GT(count, 100);

@@ -103,10 +103,12 @@ TEST(EncodeCliTest, TheFileIsTheSameWhateverTheMachinesCpu) {
     unsetenv("GLIBC_TUNABLES");
   }
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(testing::ReadFile(dir.File("here.mvid")), testing::ReadFile(dir.File("older-cpu.mvid")));
+  EXPECT_EQ(testing::ReadFile(dir.File("here.mvid")),
+            testing::ReadFile(dir.File("older-cpu.mvid")));
   // The recorded bytes are the geometry's (--no-colour): both machines' files were recorded
   // before the colour stream existed, and the geometry of a file is the same with colour.
-  const testing::CliRun grey = testing::RunMeshvid(encode + "'" + dir.File("grey.mvid") + "' --no-colour", dir);
+  const testing::CliRun grey =
+      testing::RunMeshvid(encode + "'" + dir.File("grey.mvid") + "' --no-colour", dir);
   ASSERT_EQ(grey.exit_code, 0) << grey.err;
   const std::string here = testing::ReadFile(dir.File("grey.mvid"));
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(here.data());

@@ -335,6 +335,12 @@ StatusOr<const GreyPicture*> MvidDecoder::DisplacementPicture(std::uint32_t fram
   return &group_->pictures[frame - group_->first_frame];
 }
 
+StatusOr<const ColourPicture*> MvidDecoder::DecodedColourPicture(std::uint32_t frame) {
+  if (!info_.colour) return InvalidArgumentError(name_ + " has no colour stream");
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return &group_->colour_pictures[frame - group_->first_frame];
+}
+
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   // A stream whose header did not know the frame count learns it at its end.
   const bool count_known = groups_->reader() != nullptr || info_.frame_count > 0;

@@ -156,6 +156,9 @@ class MvidDecoder {
   /// The decoded displacement picture of `frame` (10-bit samples as the video gives them,
   /// before de-quantisation). Valid until a frame of another group is decoded.
   StatusOr<const GreyPicture*> DisplacementPicture(std::uint32_t frame);
+  /// The decoded colour picture of `frame` (8-bit Y Cb Cr 4:4:4 as the video gives it), of a
+  /// file with a colour stream. Valid until a frame of another group is decoded.
+  StatusOr<const ColourPicture*> DecodedColourPicture(std::uint32_t frame);
 
  private:
   class GroupSource;

@@ -96,6 +96,7 @@ class File {
     d["frame_rate"] = info.frame_rate;
     d["levels"] = info.levels;
     d["codec"] = std::string(VideoCodecName(info.codec));
+    d["colour"] = info.colour;
     d["gof_size"] = info.gof_size;
     d["format_version"] = info.format_version;
     d["file_bytes"] = info.file_bytes;
@@ -150,6 +151,23 @@ class File {
       mesh = decoder().DecodeFrame(t, l);
     }
     return ToNumpy(Unwrap(std::move(mesh)));
+  }
+
+  /// Vertex colours of frame t at `level` as uint8 (N, 3), in the order of frame()'s vertices.
+  py::array_t<std::uint8_t> Colours(std::int64_t frame, int level) {
+    const std::uint32_t t = CheckFrame(frame);
+    const int l = level < 0 ? decoder().info().levels : level;
+    std::vector<Colour> colours;
+    Status status;
+    {
+      py::gil_scoped_release release;
+      status = decoder().DecodeColours(t, l, &colours);
+    }
+    if (!status.ok()) Raise(status);
+    static_assert(sizeof(Colour) == 3, "colours are copied as packed bytes");
+    py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(colours.size()), py::ssize_t{3}});
+    std::memcpy(out.mutable_data(), colours.data(), 3 * colours.size());
+    return out;
   }
 
   std::uint32_t frame_count() const { return decoder().info().frame_count; }
@@ -313,6 +331,9 @@ PYBIND11_MODULE(meshvid, m) {
       .def("frame", &File::Frame, py::arg("t"), py::arg("level") = -1,
            "(vertices float32 (N, 3), triangles int32 (T, 3)) of frame t at `level` "
            "(-1: the finest stored). Frames of one key group share the triangles.")
+      .def("colours", &File::Colours, py::arg("t"), py::arg("level") = -1,
+           "Vertex colours uint8 (N, 3) of frame t at `level`, in frame()'s vertex order; "
+           "meshvid.Error if the file has no colour (info['colour']).")
       .def(
           "frames",
           [](py::object self, int level) {

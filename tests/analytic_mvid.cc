@@ -98,6 +98,13 @@ float DetailAt(const Eigen::Vector3f& rest, int frame) {
   return 0.02f * std::sin(5 * rest.x()) * std::cos(3 * rest.y() + 0.2f * frame);
 }
 
+Colour ColourAt(const Eigen::Vector3f& rest, int frame) {
+  const Eigen::Vector3f rgb(128 + 100 * std::sin(4 * rest.x() + 0.3f * frame),
+                            128 + 100 * std::cos(3 * rest.y()),
+                            128 + 80 * std::sin(2 * rest.z() + rest.x()));
+  return rgb.array().round().cast<std::uint8_t>().matrix();
+}
+
 namespace {
 
 /// Writes frames [first, end) with the writer's current key group, in groups of gof_size.
@@ -112,6 +119,7 @@ Status WriteAnalyticFrames(MvidWriter& writer, int first_frame, int end) {
   for (int first = first_frame; first < end; first += gof_size) {
     std::vector<std::vector<RigidTransform>> transforms;
     std::vector<std::vector<float>> displacements;
+    std::vector<std::vector<Colour>> colours;
     for (int f = first; f < std::min(end, first + gof_size); ++f) {
       // Segment s moves as TransformsAt's segment s mod 2 (deformation nodes alternate).
       const std::vector<RigidTransform> two = TransformsAt(f);
@@ -121,8 +129,11 @@ Status WriteAnalyticFrames(MvidWriter& writer, int first_frame, int end) {
       }
       auto& field = displacements.emplace_back();
       for (const auto& p : rest_points) field.push_back(DetailAt(p, f));
+      if (!writer.settings().colour) continue;
+      auto& colour = colours.emplace_back();
+      for (const auto& p : rest_points) colour.push_back(ColourAt(p, f));
     }
-    MESHVID_RETURN_IF_ERROR(writer.WriteGroup(transforms, displacements));
+    MESHVID_RETURN_IF_ERROR(writer.WriteGroup(transforms, displacements, colours));
   }
   return Status::Ok();
 }
@@ -225,6 +236,27 @@ StatusOr<ReconstructionError> MeasureReconstructionError(MvidDecoder& decoder, i
     }
   }
   error.rms = static_cast<float>(std::sqrt(sum_squares / std::max<std::size_t>(count, 1)));
+  return error;
+}
+
+StatusOr<int> MaxColourError(MvidDecoder& decoder, int level, int frames) {
+  int error = 0;
+  std::vector<Colour> colours;
+  std::vector<Eigen::Vector3f> rest_points, rest_directions;
+  for (int f = 0; f < frames; ++f) {
+    MESHVID_RETURN_IF_ERROR(decoder.DecodeColours(f, level, &colours));
+    // The rest points of the frame's key group (decoding the frame made it current).
+    MESHVID_ASSIGN_OR_RETURN(
+        const RegularSubdivision lattice,
+        RegularSubdivision::Create(decoder.base_mesh(), decoder.info().levels));
+    EvaluateSampleFrames(lattice, level, decoder.base_mesh().positions,
+                         ComputeVertexNormals(decoder.base_mesh()), &rest_points, &rest_directions);
+    if (rest_points.size() != colours.size()) return InternalError("sample counts differ");
+    for (std::size_t s = 0; s < colours.size(); ++s) {
+      const Colour exact = ColourAt(rest_points[s], f);
+      error = std::max(error, (colours[s].cast<int>() - exact.cast<int>()).cwiseAbs().maxCoeff());
+    }
+  }
   return error;
 }
 

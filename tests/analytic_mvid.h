@@ -34,6 +34,14 @@ std::vector<RigidTransform> TransformsAt(int frame);
 /// The detail at a point of the unposed base, in [-0.02, 0.02], changing with time.
 float DetailAt(const Eigen::Vector3f& rest, int frame);
 
+/// The colour at a point of the unposed base (R G B, each channel within [28, 228]), changing
+/// with time; written when the settings ask for a colour stream.
+Colour ColourAt(const Eigen::Vector3f& rest, int frame);
+
+/// The largest difference of a channel between the decoded colours of frames [0, frames) at
+/// `level` and the exact ColourAt.
+StatusOr<int> MaxColourError(MvidDecoder& decoder, int level, int frames);
+
 /// Writes `frames` frames of this representation with `settings` to memory (segment s of
 /// `motion` moving as TransformsAt's segment s mod 2).
 StatusOr<std::vector<std::uint8_t>> WriteAnalyticMvid(const TriangleMesh& base,

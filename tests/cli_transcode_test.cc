@@ -10,6 +10,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "codec/dec/mvid_decoder.h"
 #include "format/container_reader.h"
@@ -103,6 +104,53 @@ TEST(TranscodeCliTest, Ffv1ToFfv1ChangesNoPosition) {
   ASSERT_NE(original, nullptr);
   ASSERT_NE(transcoded, nullptr);
   EXPECT_EQ(LargestMove(*original, *transcoded), 0.0);
+}
+
+/// Largest difference of a channel between the decoded colours of every frame at the finest
+/// level.
+int LargestColourChange(MvidDecoder& a, MvidDecoder& b) {
+  int largest = 0;
+  std::vector<Colour> x, y;
+  for (std::uint32_t f = 0; f < a.info().frame_count; ++f) {
+    const bool ok = a.DecodeColours(f, a.info().levels, &x).ok() &&
+                    b.DecodeColours(f, b.info().levels, &y).ok();
+    EXPECT_TRUE(ok) << "frame " << f;
+    EXPECT_EQ(x.size(), y.size());
+    if (!ok || x.size() != y.size()) return 256;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      largest = std::max(largest, (x[i].cast<int>() - y[i].cast<int>()).cwiseAbs().maxCoeff());
+    }
+  }
+  return largest;
+}
+
+// A file with a colour stream: its colour video is coded again with the displacements'.
+TEST(TranscodeCliTest, TheColourStreamIsCodedAgainToo) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  const std::string colour = std::string(MESHVID_GOLDEN_DIR) + "/sphere.colour.mvid";
+  std::unique_ptr<MvidDecoder> original = testing::OpenDecoderOrFail(colour);
+  ASSERT_NE(original, nullptr);
+  ASSERT_TRUE(original->info().colour);
+  testing::CliRun run = testing::RunMeshvid(
+      "transcode '" + colour + "' --codec ffv1 -o '" + dir.File("ffv1.mvid") + "'", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::unique_ptr<MvidDecoder> again = testing::OpenDecoderOrFail(dir.File("ffv1.mvid"));
+  ASSERT_NE(again, nullptr);
+  EXPECT_TRUE(again->info().colour);
+  EXPECT_EQ(LargestColourChange(*original, *again), 0);
+  run = testing::RunMeshvid(
+      "transcode '" + colour + "' --codec av1 --quality 90 -o '" + dir.File("av1.mvid") + "'", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::unique_ptr<MvidDecoder> av1 = testing::OpenDecoderOrFail(dir.File("av1.mvid"));
+  ASSERT_NE(av1, nullptr);
+  EXPECT_EQ(av1->info().codec, VideoCodec::kAv1);
+  EXPECT_TRUE(av1->info().colour);
+  const int change = LargestColourChange(*original, *av1);
+  EXPECT_GT(change, 0);  // coded again, lossily
+  EXPECT_LE(change, 24);
+  run = testing::RunMeshvid("info --check '" + dir.File("av1.mvid") + "'", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
 }
 
 TEST(TranscodeCliTest, AVersionOneFileTranscodesAndPicturesACodecRefusesAreAClearError) {

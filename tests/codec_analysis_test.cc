@@ -1,11 +1,10 @@
 // The encoder's analysis stages: normal shooting, displacement measurement and hole filling.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <gtest/gtest.h>
-
-#include <algorithm>
 
 #include "codec/enc/key_groups/detail.h"
 #include "codec/enc/tracking/normal_shooting.h"
@@ -104,6 +103,72 @@ TEST(Detail, FillsHolesInTimeThenInSpace) {
   for (auto& f : empty) {
     for (float d : f) EXPECT_FALSE(std::isnan(d));
   }
+}
+
+// Colour's fill: every sample a value reaches spreads from its valued neighbours (no sample
+// of a wide hole takes 0), and a part of the lattice apart from every value takes the frame's
+// mean. The displacements' default seeding may give a wide hole's far samples 0.
+TEST(Detail, ColourFillSpreadsThroughWideHolesAndGivesApartPartsTheMean) {
+  TriangleMesh base = MakeGridPlane(1.0f, 4, 0.0f);
+  const std::size_t plane_vertices = base.vertex_count();
+  // A second plane, apart from the first: no lattice edge joins them.
+  const TriangleMesh apart = MakeGridPlane(1.0f, 2, 5.0f);
+  base.positions.insert(base.positions.end(), apart.positions.begin(), apart.positions.end());
+  base.normals.insert(base.normals.end(), apart.normals.begin(), apart.normals.end());
+  for (const Triangle& t : apart.triangles) {
+    base.triangles.push_back({t[0] + static_cast<std::uint32_t>(plane_vertices),
+                              t[1] + static_cast<std::uint32_t>(plane_vertices),
+                              t[2] + static_cast<std::uint32_t>(plane_vertices)});
+  }
+  const RegularSubdivision lattice = PlaneLattice(base);
+  const SampleGraph graph = SampleGraph::Build(lattice);
+  const std::size_t samples = lattice.samples().size();
+  // Valued: the first plane's samples with x below its middle (50 and 150); the rest of the
+  // first plane is a wide hole; the second plane has no value at all.
+  std::vector<std::vector<float>> frames(1, std::vector<float>(samples, kNoHit));
+  int valued = 0;
+  std::vector<bool> on_first_plane(samples, false);
+  for (std::size_t s = 0; s < samples; ++s) {
+    const auto& sample = lattice.samples()[s];
+    const Triangle& t = base.triangles[sample.triangle];
+    on_first_plane[s] = t[0] < plane_vertices;
+    const Eigen::Vector3f p = (1 - sample.b1 - sample.b2) * base.positions[t[0]] +
+                              sample.b1 * base.positions[t[1]] + sample.b2 * base.positions[t[2]];
+    if (on_first_plane[s] && p.x() < -0.2f) {
+      frames[0][s] = p.y() < 0 ? 50.0f : 150.0f;
+      ++valued;
+    }
+  }
+  ASSERT_GT(valued, 0);
+  std::vector<float> last_measured;
+  const UnreachedFill colour_fill{.spread_everywhere = true, .frame_mean = true, .no_values = 128};
+  FillDisplacementGroup(graph, &last_measured, &frames, colour_fill);
+  int apart_samples = 0;
+  for (std::size_t s = 0; s < samples; ++s) {
+    if (on_first_plane[s]) {
+      EXPECT_GE(frames[0][s], 50.0f) << s;  // spread from the values, never 0
+      EXPECT_LE(frames[0][s], 150.0f) << s;
+    } else {
+      ++apart_samples;
+    }
+  }
+  ASSERT_GT(apart_samples, 0);
+  // The apart plane takes one value, a mean of the frame's values (50 and 150, and the first
+  // ring around them), not 0 or `no_values`.
+  std::optional<float> apart_value;
+  for (std::size_t s = 0; s < samples; ++s) {
+    if (on_first_plane[s]) continue;
+    if (!apart_value) apart_value = frames[0][s];
+    EXPECT_EQ(frames[0][s], *apart_value) << s;
+  }
+  EXPECT_GT(*apart_value, 50.0f);
+  EXPECT_LT(*apart_value, 150.0f);
+  EXPECT_NE(*apart_value, 128.0f);
+  // With no value anywhere, `no_values`.
+  std::vector<std::vector<float>> none(1, std::vector<float>(samples, kNoHit));
+  std::vector<float> fresh;
+  FillDisplacementGroup(graph, &fresh, &none, colour_fill);
+  for (float v : none[0]) EXPECT_EQ(v, 128.0f);
 }
 
 }  // namespace

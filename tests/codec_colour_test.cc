@@ -76,7 +76,9 @@ struct Scene {
     auto hits = MeasureDisplacements(lattice, base.positions, views, options, displacements,
                                      cameras, &observations);
     EXPECT_TRUE(hits.ok()) << hits.status().ToString();
-    if (hits.ok()) EXPECT_EQ(*hits, lattice.samples().size());
+    if (hits.ok()) {
+      EXPECT_EQ(*hits, lattice.samples().size());
+    }
     return observations;
   }
 

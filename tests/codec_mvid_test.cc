@@ -533,5 +533,41 @@ TEST(MvidGoldenTest, TransformBytePlanesFileDecodes) {
   }
 }
 
+// tests/golden/sphere.colour.mvid: a colour stream (spec/mvid-codec.md 2.8), FFV1, two key
+// groups; written by this test when MESHVID_WRITE_GOLDEN names a folder, decoded by it always.
+// FFV1 is lossless, so a colour differs from the exact one by the 8-bit Y Cb Cr round trip.
+TEST(MvidGoldenTest, ColourStreamFileDecodes) {
+  MvidWriterSettings settings;
+  settings.codec = VideoCodec::kFfv1;
+  settings.levels = 2;
+  settings.gof_size = 3;
+  settings.colour = true;
+  settings.metadata_json = R"({"golden":"sphere colour"})";
+  const TriangleMesh sphere = testing::SphereMesh(2);
+  auto bytes = testing::WriteAnalyticKeyGroups({{sphere, 0}, {sphere, 4}}, 7, settings);
+  ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
+  if (const char* out = std::getenv("MESHVID_WRITE_GOLDEN")) {
+    std::ofstream(std::string(out) + "/sphere.colour.mvid", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  }
+  for (const bool golden : {false, true}) {
+    auto decoder =
+        golden ? MvidDecoder::OpenFile(std::string(MESHVID_GOLDEN_DIR) + "/sphere.colour.mvid")
+               : MvidDecoder::OpenMemory(*bytes);
+    ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+    EXPECT_TRUE((*decoder)->info().colour);
+    EXPECT_EQ((*decoder)->info().key_groups.size(), 2u);
+    for (int level = 0; level <= 2; ++level) {
+      auto error = testing::MaxColourError(**decoder, level, 7);
+      ASSERT_TRUE(error.ok()) << error.status().ToString();
+      EXPECT_LE(*error, 2) << "level " << level << ", golden " << golden;
+    }
+    EXPECT_LE(MaxError(**decoder, 2, 7), kStep / 2 * 1.01f + 1e-6f) << "golden " << golden;
+    auto mesh = (*decoder)->DecodeFrame(5, 1);
+    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
+    EXPECT_EQ(mesh->colours.size(), mesh->vertex_count());
+  }
+}
+
 }  // namespace
 }  // namespace meshvid

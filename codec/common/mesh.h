@@ -44,6 +44,14 @@ Status ValidateMesh(const TriangleMesh& mesh, std::string_view what);
 /// Axis-aligned bounding box of the positions (empty box for an empty mesh).
 Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh);
 
+/// The colour at a point of triangle `t` with barycentric weights (1 - u - v, u, v) of its
+/// corners: the corners' colours (`colours`, one per vertex) blended, 0..255 per channel.
+inline Eigen::Vector3f BlendColours(std::span<const Colour> colours, const Triangle& t, float u,
+                                    float v) {
+  return (1.0f - u - v) * colours[t[0]].cast<float>() + u * colours[t[1]].cast<float>() +
+         v * colours[t[2]].cast<float>();
+}
+
 /// Appends `src` to `dst`, offsetting its indices. Normals and colours are each kept only if
 /// both have them.
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);

@@ -49,6 +49,24 @@ Scalar SquaredDistanceToTriangle(const Eigen::Matrix<Scalar, 3, 1>& p,
   return (ClosestPointOnTriangle(p, a, b, c) - p).squaredNorm();
 }
 
+/// The barycentric weights (of a, b, c) of point p of triangle (a, b, c)'s plane; (1, 0, 0)
+/// for a degenerate triangle.
+template <typename Scalar>
+Eigen::Matrix<Scalar, 3, 1> BarycentricWeights(const Eigen::Matrix<Scalar, 3, 1>& p,
+                                               const Eigen::Matrix<Scalar, 3, 1>& a,
+                                               const Eigen::Matrix<Scalar, 3, 1>& b,
+                                               const Eigen::Matrix<Scalar, 3, 1>& c) {
+  using Vector = Eigen::Matrix<Scalar, 3, 1>;
+  const Vector e0 = b - a, e1 = c - a, e2 = p - a;
+  const Scalar d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
+  const Scalar d20 = e2.dot(e0), d21 = e2.dot(e1);
+  const Scalar denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > Scalar(0))) return Vector(1, 0, 0);
+  const Scalar wb = (d11 * d20 - d01 * d21) / denominator;
+  const Scalar wc = (d00 * d21 - d01 * d20) / denominator;
+  return Vector(1 - wb - wc, wb, wc);
+}
+
 }  // namespace meshvid
 
 #endif  // MESHVID_CODEC_COMMON_TRIANGLE_DISTANCE_H_

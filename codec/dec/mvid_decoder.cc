@@ -20,6 +20,7 @@ struct MvidDecoder::Group {
   GofSideInfo side;
   const DisplacementLayout* layout = nullptr;  ///< the layout of side.packing
   std::vector<GreyPicture> pictures;  ///< in presentation order, one per frame
+  std::vector<ColourPicture> colour_pictures;  ///< the same, of the colour stream (if any)
 };
 
 /// One decoded key group: its geometry and the bytes it came from.
@@ -216,6 +217,7 @@ Status MvidDecoder::ReadHeader(const ContainerHeader& header, const std::string&
   name_ = name;
   MvidInfo& info = info_;
   MESHVID_ASSIGN_OR_RETURN(info.codec, CheckStreamHeader(header, name));
+  info.colour = HasColourStream(header);
   info.frame_rate = double(header.frame_rate_numerator) / header.frame_rate_denominator;
   info.declared_frame_count = header.frame_count;
   info.gof_size = header.gof_size;
@@ -333,6 +335,12 @@ StatusOr<const GreyPicture*> MvidDecoder::DisplacementPicture(std::uint32_t fram
   return &group_->pictures[frame - group_->first_frame];
 }
 
+StatusOr<const ColourPicture*> MvidDecoder::DecodedColourPicture(std::uint32_t frame) {
+  if (!info_.colour) return InvalidArgumentError(name_ + " has no colour stream");
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  return &group_->colour_pictures[frame - group_->first_frame];
+}
+
 Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
   // A stream whose header did not know the frame count learns it at its end.
   const bool count_known = groups_->reader() != nullptr || info_.frame_count > 0;
@@ -385,7 +393,34 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
     return CorruptError(context + ": the video gives " + std::to_string(group->pictures.size()) +
                         " pictures for " + std::to_string(gof.frame_count) + " frames");
   }
+  if (info_.colour) MESHVID_RETURN_IF_ERROR(DecodeColourVideo(gof, context, group.get()));
   group_ = std::move(group);
+  return Status::Ok();
+}
+
+Status MvidDecoder::DecodeColourVideo(const GroupOfFrames& gof, const std::string& context,
+                                      Group* group) {
+  if (gof.packets.size() < 2) return CorruptError(context + ": the colour stream is missing");
+  // The colour video carries no configuration record (spec/mvid-codec.md, colour video).
+  StatusOr<std::unique_ptr<VideoDecoder>> created =
+      VideoDecoder::Create(info_.codec, group->layout->width(), group->layout->height(), {},
+                           options_.threads, PictureFormat::kColour8);
+  if (!created.ok()) return created.status().WithContext(context + " colour");
+  VideoPacket packet;
+  for (std::size_t p = 0; p < gof.packets[1].size(); ++p) {
+    packet.data = gof.packets[1][p];
+    packet.pts = packet.dts = static_cast<std::int64_t>(p);
+    packet.keyframe = p == 0 || info_.codec == VideoCodec::kFfv1;
+    MESHVID_RETURN_IF_ERROR(
+        (*created)->Decode(packet, &group->colour_pictures).WithContext(context + " colour"));
+  }
+  MESHVID_RETURN_IF_ERROR(
+      (*created)->Flush(&group->colour_pictures).WithContext(context + " colour"));
+  if (group->colour_pictures.size() != gof.frame_count) {
+    return CorruptError(context + ": the colour video gives " +
+                        std::to_string(group->colour_pictures.size()) + " pictures for " +
+                        std::to_string(gof.frame_count) + " frames");
+  }
   return Status::Ok();
 }
 
@@ -407,6 +442,12 @@ StatusOr<MvidStreamSizes> MvidDecoder::MeasureStreams() {
     for (const auto& packet : gof.packets[0]) {
       sizes.video_bytes += packet.size();
       bytes += packet.size();
+    }
+    for (std::size_t stream = 1; stream < gof.packets.size(); ++stream) {
+      for (const auto& packet : gof.packets[stream]) {
+        sizes.colour_bytes += packet.size();
+        bytes += packet.size();
+      }
     }
     sizes.key_group_bytes[reader->KeyGroupOfGof(g)] += bytes;
   }
@@ -442,7 +483,17 @@ StatusOr<TriangleMesh> MvidDecoder::DecodeFrame(std::uint32_t frame, int level) 
   MESHVID_RETURN_IF_ERROR(DecodePositions(frame, level, &mesh.positions));
   MESHVID_ASSIGN_OR_RETURN(const std::vector<Triangle>* triangles, Triangles(level));
   mesh.triangles = *triangles;
+  if (info_.colour) MESHVID_RETURN_IF_ERROR(DecodeColours(frame, level, &mesh.colours));
   return mesh;
+}
+
+Status MvidDecoder::DecodeColours(std::uint32_t frame, int level, std::vector<Colour>* colours) {
+  if (!info_.colour) return InvalidArgumentError(name_ + " has no colour stream");
+  MESHVID_RETURN_IF_ERROR(CheckLevel(level));
+  MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  group_->layout->UnpackColour(group_->colour_pictures[frame - group_->first_frame],
+                               key_group_->geometry.subdivision().sample_count(level), colours);
+  return Status::Ok();
 }
 
 }  // namespace meshvid

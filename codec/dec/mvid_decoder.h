@@ -55,6 +55,7 @@ struct MvidInfo {
   std::uint32_t gof_count = 0;
   int levels = 0;
   VideoCodec codec = VideoCodec::kHevc;
+  bool colour = false;  ///< the file has a colour stream: frames decode with vertex colours
   int picture_width = 0;
   int picture_height = 0;
   std::size_t base_vertices = 0;
@@ -85,6 +86,7 @@ std::string PartialFileText(const MvidInfo& info);
 struct MvidStreamSizes {
   std::uint64_t transform_bytes = 0;  ///< group side information (transforms, ranges)
   std::uint64_t video_bytes = 0;      ///< displacement video packets
+  std::uint64_t colour_bytes = 0;     ///< colour video packets
   std::uint64_t base_bytes = 0;       ///< BASE payloads of every key group
   std::uint64_t motion_bytes = 0;     ///< MOTN payloads of every key group
   /// Per key group: its BASE, MOTN, side information and video bytes.
@@ -135,8 +137,12 @@ class MvidDecoder {
   StatusOr<const std::vector<Triangle>*> TrianglesOf(std::uint32_t frame, int level);
   /// Positions of frame `frame` at `level`, indexed as Triangles(level).
   Status DecodePositions(std::uint32_t frame, int level, std::vector<Eigen::Vector3f>* positions);
-  /// The mesh of frame `frame` at `level` (positions + triangles).
+  /// The mesh of frame `frame` at `level` (positions + triangles, and vertex colours when the
+  /// file has colour).
   StatusOr<TriangleMesh> DecodeFrame(std::uint32_t frame, int level);
+  /// The vertex colours of frame `frame` at `level`, indexed as DecodePositions' positions.
+  /// kInvalidArgument when the file has no colour (info().colour).
+  Status DecodeColours(std::uint32_t frame, int level, std::vector<Colour>* colours);
   /// The de-quantised displacement field of a frame (all samples, finest level).
   Status DecodeDisplacements(std::uint32_t frame, std::vector<float>* displacements);
   /// Reads every group once to total the bytes of each per-group stream (files and memory
@@ -150,6 +156,9 @@ class MvidDecoder {
   /// The decoded displacement picture of `frame` (10-bit samples as the video gives them,
   /// before de-quantisation). Valid until a frame of another group is decoded.
   StatusOr<const GreyPicture*> DisplacementPicture(std::uint32_t frame);
+  /// The decoded colour picture of `frame` (8-bit Y Cb Cr 4:4:4 as the video gives it), of a
+  /// file with a colour stream. Valid until a frame of another group is decoded.
+  StatusOr<const ColourPicture*> DecodedColourPicture(std::uint32_t frame);
 
  private:
   class GroupSource;
@@ -161,6 +170,8 @@ class MvidDecoder {
   MvidDecoder() = default;
   /// Checks the header and fills info_ from it.
   Status ReadHeader(const ContainerHeader& header, const std::string& name);
+  /// Decodes `gof`'s colour video into `group` (files with a colour stream).
+  Status DecodeColourVideo(const GroupOfFrames& gof, const std::string& context, Group* group);
   /// Makes key group `k` the current one (decoding its BASE and MOTN unless it already is);
   /// fills info_'s base figures from key group 0.
   Status LoadKeyGroup(std::size_t k);

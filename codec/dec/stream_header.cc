@@ -7,9 +7,23 @@
 namespace meshvid {
 
 StatusOr<VideoCodec> CheckStreamHeader(const ContainerHeader& header, const std::string& name) {
-  if (header.streams.size() != 1 || header.streams[0].name != "displacement" ||
-      header.streams[0].bit_depth != 10) {
-    return UnsupportedError(name + ": expected one 10-bit displacement video stream");
+  if (header.streams.empty() || header.streams.size() > 2 ||
+      header.streams[0].name != "displacement" || header.streams[0].bit_depth != 10) {
+    return UnsupportedError(name +
+                            ": expected a 10-bit displacement video stream, and at most an "
+                            "8-bit colour stream after it");
+  }
+  if (header.streams.size() == 2) {
+    const StreamInfo& displacement = header.streams[0];
+    const StreamInfo& colour = header.streams[1];
+    if (colour.name != "colour" || colour.bit_depth != 8) {
+      return UnsupportedError(name + ": the second stream is not an 8-bit colour stream");
+    }
+    if (colour.codec != displacement.codec || colour.width != displacement.width ||
+        colour.height != displacement.height) {
+      return CorruptError(name + ": the colour stream's codec or picture size differs from "
+                                 "the displacement stream's");
+    }
   }
   if (header.level_count > static_cast<std::uint32_t>(RegularSubdivision::kMaxLevels)) {
     return CorruptError(name + ": " + std::to_string(header.level_count) + " levels");
@@ -21,6 +35,8 @@ StatusOr<VideoCodec> CheckStreamHeader(const ContainerHeader& header, const std:
   }
   return *codec;
 }
+
+bool HasColourStream(const ContainerHeader& header) { return header.streams.size() == 2; }
 
 std::string PartialFileText(std::uint64_t readable, std::uint32_t declared) {
   if (declared <= readable) return "";

@@ -12,10 +12,14 @@
 
 namespace meshvid {
 
-/// The codec of `header`'s displacement video, after checking that the header declares the one
-/// 10-bit "displacement" stream meshvid writes, of a codec it decodes, and a level count the
-/// subdivision supports. kUnsupported / kCorrupt naming `name` otherwise.
+/// The codec of `header`'s displacement video, after checking that the header declares the
+/// streams meshvid writes: the 10-bit "displacement" stream, optionally followed by an 8-bit
+/// "colour" stream of the same codec and picture size; of a codec it decodes, and a level
+/// count the subdivision supports. kUnsupported / kCorrupt naming `name` otherwise.
 StatusOr<VideoCodec> CheckStreamHeader(const ContainerHeader& header, const std::string& name);
+
+/// True when a header that passed CheckStreamHeader declares a colour stream (stream 1).
+bool HasColourStream(const ContainerHeader& header);
 
 /// "partial file: only 8 of the 12 frames its header promises are readable" when `readable` <
 /// `declared`, else "": the words every front end uses for a partial file.

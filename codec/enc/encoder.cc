@@ -1,12 +1,15 @@
 #include "codec/enc/encoder.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "codec/common/colour_space.h"
 #include "codec/enc/coding/mvid_writer.h"
+#include "codec/enc/key_groups/colour.h"
 #include "codec/enc/key_groups/detail.h"
 #include "codec/enc/key_groups/key_frame_ahead.h"
 #include "codec/enc/key_groups/key_group_analysis.h"
@@ -101,12 +104,18 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
   const int chunk = std::max(1, options.tuning.window / options.gof_size) * options.gof_size;
   std::vector<float> last_measured;
   std::vector<Eigen::Vector3f> posed;
+  const bool colour = writer->settings().colour;
+  std::array<std::vector<float>, 3> last_colour;  // per channel, as last_measured
+  ColourObservations observations;
   for (int chunk_first = 0; chunk_first < frames; chunk_first += chunk) {
     const int chunk_end = std::min(frames, chunk_first + chunk);
     const std::vector<std::vector<RigidTransform>> chunk_tracks(
         analysis.tracks.begin() + chunk_first, analysis.tracks.begin() + chunk_end);
     const auto decoded_tracks = writer->DequantizeTransforms(chunk_tracks);
     std::vector<std::vector<float>> displacements(chunk_end - chunk_first);
+    // Per channel, per frame, per sample: the fused colour, filled like the displacements.
+    std::array<std::vector<std::vector<float>>, 3> channels;
+    for (auto& channel : channels) channel.resize(colour ? chunk_end - chunk_first : 0);
     auto detail_start = Clock::now();
     for (int k = 0; k < chunk_end - chunk_first; ++k) {
       const int t = first + chunk_first + k;
@@ -116,19 +125,42 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
       }
       MESHVID_ASSIGN_OR_RETURN(std::vector<TriangleMesh> views, ctx.source.LoadFrame(t));
       PoseVertices(writer->motion(), decoded_tracks[k], writer->decoded_base().positions, &posed);
-      MESHVID_ASSIGN_OR_RETURN(std::size_t frame_hits,
-                               MeasureDisplacements(lattice, posed, views, detail,
-                                                    &displacements[k]));
+      MESHVID_ASSIGN_OR_RETURN(
+          std::size_t frame_hits,
+          MeasureDisplacements(lattice, posed, views, detail, &displacements[k],
+                               ctx.source.view_cameras(), colour ? &observations : nullptr));
       *hits += frame_hits;
+      if (colour) {
+        std::array<std::vector<float>, 3> fused;
+        FuseColours(observations, EstimateExposureGains(observations), &fused);
+        for (int c = 0; c < 3; ++c) channels[c][k] = std::move(fused[c]);
+      }
     }
     *filled += FillDisplacementGroup(graph, &last_measured, &displacements);
+    std::vector<std::vector<Colour>> colours(colour ? chunk_end - chunk_first : 0);
+    if (colour) {
+      // A part no view saw in the group takes the average colour, not black.
+      const UnreachedFill average_colour{
+          .spread_everywhere = true, .frame_mean = true, .no_values = 128};
+      for (int c = 0; c < 3; ++c) {
+        FillDisplacementGroup(graph, &last_colour[c], &channels[c], average_colour);
+      }
+      for (std::size_t k = 0; k < colours.size(); ++k) {
+        colours[k].resize(channels[0][k].size());
+        for (std::size_t i = 0; i < colours[k].size(); ++i) {
+          colours[k][i] = RoundTo8Bits({channels[0][k][i], channels[1][k][i], channels[2][k][i]});
+        }
+      }
+    }
     summary->seconds_detail += SecondsSince(detail_start);
     auto coding_start = Clock::now();
     for (int g = 0; g < chunk_end - chunk_first; g += options.gof_size) {
       const int g_end = std::min(chunk_end - chunk_first, g + options.gof_size);
+      std::vector<std::vector<Colour>> group_colours;
+      if (colour) group_colours.assign(colours.begin() + g, colours.begin() + g_end);
       MESHVID_RETURN_IF_ERROR(writer->WriteGroup(
           {chunk_tracks.begin() + g, chunk_tracks.begin() + g_end},
-          {displacements.begin() + g, displacements.begin() + g_end}));
+          {displacements.begin() + g, displacements.begin() + g_end}, group_colours));
     }
     summary->seconds_coding += SecondsSince(coding_start);
   }
@@ -137,7 +169,8 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
 
 /// The writer's settings for an encode of `frames` frames of `source`.
 MvidWriterSettings WriterSettings(const EncoderOptions& options, const FrameSource& source,
-                                  int frames, const MotionQuantization& transform_steps) {
+                                  int frames, const MotionQuantization& transform_steps,
+                                  bool capture_has_colour) {
   MvidWriterSettings settings;
   settings.levels = options.levels;
   settings.codec = options.codec;
@@ -149,6 +182,9 @@ MvidWriterSettings WriterSettings(const EncoderOptions& options, const FrameSour
   settings.frame_count = static_cast<std::uint32_t>(frames);
   settings.metadata_json = options.metadata_json;
   settings.motion = transform_steps;
+  settings.colour = capture_has_colour && options.colour;
+  settings.colour_qp = QualityToQp(
+      options.codec, options.colour_quality >= 0 ? options.colour_quality : options.quality);
   return settings;
 }
 
@@ -254,8 +290,14 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   // Lengths follow the first frame's size, for every key group alike.
   float scale = 0;
   MotionQuantization transform_steps;
+  bool capture_has_colour = false;
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, source.LoadFrame(first));
+    capture_has_colour = std::all_of(views.begin(), views.end(), [](const TriangleMesh& view) {
+      return view.empty() || view.colours.size() == view.vertex_count();
+    }) && std::any_of(views.begin(), views.end(), [](const TriangleMesh& view) {
+      return !view.colours.empty();
+    });
     const Eigen::AlignedBox3f box = BoxOf(views);
     scale = box.isEmpty() ? 0.0f : box.diagonal().norm();
     if (!(scale > 0)) {
@@ -274,7 +316,8 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   ctx.shot.min_abs_cos =
       static_cast<float>(std::cos(options.tuning.max_angle_degrees * M_PI / 180));
 
-  const MvidWriterSettings settings = WriterSettings(options, source, frames, transform_steps);
+  const MvidWriterSettings settings =
+      WriterSettings(options, source, frames, transform_steps, capture_has_colour);
   std::unique_ptr<MvidWriter> writer;
   std::size_t filled = 0, hits = 0, samples = 0;
   MadeAhead ahead(ctx);

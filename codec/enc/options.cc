@@ -154,6 +154,9 @@ Status CheckOptions(const EncoderOptions& o) {
     return bad("levels must be in 0.." + std::to_string(RegularSubdivision::kMaxLevels));
   }
   if (o.quality < 0 || o.quality > 100) return bad("quality must be in 0..100");
+  if (o.colour_quality < -1 || o.colour_quality > 100) {
+    return bad("colour_quality must be in 0..100 (-1: quality's)");
+  }
   if (o.effort < 0 || o.effort > 9) return bad("effort must be in 0..9");
   if (o.gof_size < 1 || o.gof_size > 1024) return bad("gof_size must be in 1..1024");
   if (!(o.rebase_gain_db >= 0 && o.rebase_gain_db <= 100)) {

@@ -216,6 +216,11 @@ struct EncoderOptions {
   /// (bench/CODECS.md); and the codec browsers decode in software (WebCodecs).
   VideoCodec codec = VideoCodec::kAv1;
   int quality = 40;              ///< 0 (smallest) .. 100 (lossless for FFV1, finest QP otherwise)
+  /// Code the capture's colour (a colour stream) when every view of its first frame has
+  /// vertex colours; false: geometry only.
+  bool colour = true;
+  /// Quality of the colour video, as `quality` (-1: the same as `quality`).
+  int colour_quality = -1;
   int effort = 4;                ///< video encoder effort 0..9
   int gof_size = 32;             ///< frames per group (random-access unit)
   // --- key groups (a fresh base where it is worth its bytes)

@@ -15,6 +15,7 @@ struct MvidWriteStats {
   std::uint64_t motion_bytes = 0;     ///< MOTN: segments and blend weights, summed
   std::uint64_t transform_bytes = 0;  ///< group side information: transforms and ranges
   std::uint64_t video_bytes = 0;      ///< displacement video packets
+  std::uint64_t colour_bytes = 0;     ///< colour video packets (0 without colour)
   std::uint64_t total_bytes = 0;      ///< everything, container overhead included
   std::uint32_t frames = 0;
 };

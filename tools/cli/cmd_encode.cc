@@ -197,6 +197,7 @@ nlohmann::json SummaryJson(const EncodeSummary& s, const EncodeArguments& args, 
   j["bytes_motion"] = s.stats.motion_bytes;
   j["bytes_transforms"] = s.stats.transform_bytes;
   j["bytes_video"] = s.stats.video_bytes;
+  j["bytes_colour"] = s.stats.colour_bytes;
   j["bytes_per_frame"] = double(s.stats.total_bytes) / frames;
   j["mbit_per_s"] = MbitPerSecond(s);
   j["seconds"] = seconds;
@@ -251,7 +252,7 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                "  base mesh     %zu vertices, %zu displacement samples per frame (level %d)\n"
                "%s"
                "  detail        %.1f%% of samples measured, %.1f%% filled by interpolation\n"
-               "  bytes         base %s, motion %s, transforms %s, video %s, total %s\n"
+               "  bytes         base %s, motion %s, transforms %s, video %s%s, total %s\n"
                "  rate          %s per frame, %.3f Mbit/s at %.3g frames/s\n",
                Count(s.frames, "frame").c_str(), Count(s.views, "view").c_str(),
                args.capture.c_str(), args.output.c_str(), seconds, frames / seconds,
@@ -259,7 +260,9 @@ void PrintSummary(const EncodeSummary& s, const EncodeArguments& args, double se
                s.base_vertices, s.samples_per_frame, args.options.levels, MotionLine(s).c_str(),
                100 * s.hit_share, 100 * s.filled_share, Kilobytes(b.base_bytes).c_str(),
                Kilobytes(b.motion_bytes).c_str(), Kilobytes(b.transform_bytes).c_str(),
-               Kilobytes(b.video_bytes).c_str(), Kilobytes(b.total_bytes).c_str(),
+               Kilobytes(b.video_bytes).c_str(),
+               b.colour_bytes > 0 ? (", colour " + Kilobytes(b.colour_bytes)).c_str() : "",
+               Kilobytes(b.total_bytes).c_str(),
                Kilobytes(b.total_bytes / frames).c_str(), MbitPerSecond(s), s.frame_rate);
   PrintHeldFrames(s, args.options);
   if (s.free_space_views > 0) {
@@ -374,6 +377,11 @@ void AddEncodeCommand(CLI::App& app, int* exit_code) {
                   "vertices, twice the transform step and 1.41x the motion's node spacing every "
                   "15 steps down)")
       ->capture_default_str();
+  cmd->add_option("--colour-quality", o.colour_quality,
+                  "Quality of the colour video, as --quality (default: --quality's). A capture "
+                  "whose views all have vertex colours is coded with a colour stream")
+      ->type_name("Q");
+  cmd->add_flag("--no-colour{false}", o.colour, "Geometry only, even if the capture has colour");
   cmd->add_option("--levels", o.levels,
                   "Subdivision levels of the displacement lattice: the finest resolution a "
                   "decoder can choose")

@@ -167,7 +167,9 @@ int RunInfo(const InfoArguments& args) {
           {"motion_model", sizes->motion_bytes},
           {"transforms", sizes->transform_bytes},
           {"video", sizes->video_bytes},
+          {"colour", sizes->colour_bytes},
           {"per_frame", bytes_per_frame}}},
+        {"colour", info.colour},
         {"mbit_per_s", mbits},
         {"vertices_per_level", info.vertices_per_level},
         {"triangles_per_level", info.triangles_per_level},
@@ -197,6 +199,11 @@ int RunInfo(const InfoArguments& args) {
   std::printf("  displacements  %s 10-bit %dx%d, %s\n",
               std::string(VideoCodecName(info.codec)).c_str(), info.picture_width,
               info.picture_height, Kilobytes(sizes->video_bytes).c_str());
+  if (info.colour) {
+    std::printf("  colour         %s 8-bit Y Cb Cr 4:4:4 %dx%d, %s\n",
+                std::string(VideoCodecName(info.codec)).c_str(), info.picture_width,
+                info.picture_height, Kilobytes(sizes->colour_bytes).c_str());
+  }
   std::printf("  total          %s = %.0f bytes per frame = %.3f Mbit/s at %.3g fps\n",
               Kilobytes(info.file_bytes).c_str(), bytes_per_frame, mbits, info.frame_rate);
   std::printf("  key group  first frame  frames  base vertices  segments  bytes\n");

@@ -28,6 +28,13 @@ nlohmann::json MetricsToJson(const FrameMetrics& m) {
   j["completeness_rms"] = JsonNumber(m.completeness_rms);
   j["hausdorff"] = JsonNumber(m.hausdorff);
   j["coverage"] = JsonNumber(m.coverage);
+  if (m.has_colour) {
+    j["y_psnr"] = JsonNumber(m.y_psnr);
+    j["cb_psnr"] = JsonNumber(m.cb_psnr);
+    j["cr_psnr"] = JsonNumber(m.cr_psnr);
+    j["yuv_psnr"] = JsonNumber(m.yuv_psnr);
+    j["y_psnr_test_to_ref"] = JsonNumber(m.y_psnr_test_to_ref);
+  }
   return j;
 }
 
@@ -43,10 +50,17 @@ constexpr int kLabelWidth = 14;
 
 std::string FormatRow(const std::string& label, const FrameMetrics& m) {
   char buffer[192];
-  std::snprintf(buffer, sizeof(buffer), "%*s %8s %8s %11.4g %11.4g %11.4g %8.2f%%\n", kLabelWidth,
+  std::snprintf(buffer, sizeof(buffer), "%*s %8s %8s %11.4g %11.4g %11.4g %8.2f%%", kLabelWidth,
                 label.c_str(), FormatPsnr(m.d1_psnr).c_str(), FormatPsnr(m.d2_psnr).c_str(),
                 m.accuracy_rms, m.completeness_rms, m.hausdorff, 100.0 * m.coverage);
-  return buffer;
+  std::string row = buffer;
+  if (m.has_colour) {
+    row += " " + std::string(8 - std::min<std::size_t>(8, FormatPsnr(m.y_psnr).size()), ' ') +
+           FormatPsnr(m.y_psnr) + " " +
+           std::string(8 - std::min<std::size_t>(8, FormatPsnr(m.yuv_psnr).size()), ' ') +
+           FormatPsnr(m.yuv_psnr);
+  }
+  return row + "\n";
 }
 
 /// The "mean of frames" row (PSNR columns only) and the lines saying what both mean rows are.
@@ -99,9 +113,10 @@ std::string FormatEvalTable(const EvalResult& result) {
   std::snprintf(header, sizeof(header),
                 "peak p = %.6g (reference bounding-box diagonal), coverage tolerance = %.4g, "
                 "%zu samples per surface\n"
-                "%*s %8s %8s %11s %11s %11s %9s\n",
+                "%*s %8s %8s %11s %11s %11s %9s%s\n",
                 result.peak, result.coverage_tolerance, result.samples, kLabelWidth, "frame",
-                "D1 PSNR", "D2 PSNR", "accuracy", "complete", "Hausdorff", "coverage");
+                "D1 PSNR", "D2 PSNR", "accuracy", "complete", "Hausdorff", "coverage",
+                result.mean.has_colour ? "   Y PSNR YUV PSNR" : "");
   std::string text = header;
   if (result.ref_first != 0) {
     text.insert(text.find('\n'), ", test frame t against reference frame t + " +
@@ -110,6 +125,10 @@ std::string FormatEvalTable(const EvalResult& result) {
   for (const FrameMetrics& m : result.frames) text += FormatRow(std::to_string(m.frame), m);
   text += FormatRow("mean MSE", result.mean);
   text += FormatMeanOfFrames(result.mean_of_frames);
+  if (result.mean.has_colour) {
+    text += "colour: PSNR of 8-bit BT.709 Y and of Y Cb Cr weighted 6:1:1 (MPEG); mean rows: the "
+            "mean of the frames' PSNRs.\n";
+  }
   return text;
 }
 

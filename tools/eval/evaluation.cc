@@ -59,6 +59,19 @@ FrameMetrics MeanFrameMetrics(const std::vector<FrameMetrics>& frames, double pe
   mean.coverage /= n;
   mean.d1_psnr = PsnrFromMse(mean.d1_mse, peak);
   mean.d2_psnr = PsnrFromMse(mean.d2_mse, peak);
+  // Colour: the mean of the per-frame PSNRs (each at most kFramePsnrCapDb), when every frame
+  // has colour on both sides.
+  mean.has_colour = !frames.empty() && std::all_of(frames.begin(), frames.end(),
+                                                   [](const FrameMetrics& f) { return f.has_colour; });
+  if (mean.has_colour) {
+    for (const FrameMetrics& f : frames) {
+      mean.y_psnr += std::min(f.y_psnr, kFramePsnrCapDb) / n;
+      mean.cb_psnr += std::min(f.cb_psnr, kFramePsnrCapDb) / n;
+      mean.cr_psnr += std::min(f.cr_psnr, kFramePsnrCapDb) / n;
+      mean.yuv_psnr += std::min(f.yuv_psnr, kFramePsnrCapDb) / n;
+      mean.y_psnr_test_to_ref += std::min(f.y_psnr_test_to_ref, kFramePsnrCapDb) / n;
+    }
+  }
   return mean;
 }
 

@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "codec/common/colour_space.h"
+#include "codec/common/triangle_distance.h"
 #include "tools/eval/sampling.h"
 #include "codec/common/point_tree.h"
 #include "tools/eval/surface_distance.h"
@@ -20,6 +22,7 @@ namespace {
 /// One surface prepared for measurement: its samples, their k-d tree, its exact distance.
 struct PreparedSurface {
   SurfaceSamples samples;
+  std::vector<Eigen::Vector3f> colours;  ///< Y Cb Cr per sample, if the mesh has colours
   PointCloud cloud;
   std::unique_ptr<PointTree> tree;
   std::unique_ptr<SurfaceDistance> surface;
@@ -32,7 +35,25 @@ struct DirectionErrors {
   double exact_rms = 0;
   double exact_max = 0;
   double within_tolerance = 0;  ///< share of samples with exact distance <= tolerance
+  Eigen::Vector3d colour_mse = Eigen::Vector3d::Zero();  ///< Y, Cb, Cr (with colour only)
 };
+
+/// Each sample's colour as Y Cb Cr: its triangle's vertex colours blended at the sample.
+std::vector<Eigen::Vector3f> SampleColours(const TriangleMesh& mesh,
+                                           const SurfaceSamples& samples) {
+  std::vector<Eigen::Vector3f> colours(samples.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Triangle& t = mesh.triangles[samples.triangles[i]];
+      const Eigen::Vector3f w =
+          BarycentricWeights(samples.points[i], mesh.positions[t[0]], mesh.positions[t[1]],
+                             mesh.positions[t[2]]);
+      colours[i] = RgbToYCbCr(BlendColours(mesh.colours, t, w[1], w[2]));
+    }
+  });
+  return colours;
+}
 
 Status Prepare(const TriangleMesh& mesh, const char* what, const MetricOptions& options,
                PreparedSurface* out) {
@@ -40,6 +61,7 @@ Status Prepare(const TriangleMesh& mesh, const char* what, const MetricOptions& 
   if (!samples.ok()) return samples.status().WithContext(what);
   out->samples = std::move(samples).value();
   out->cloud.points = out->samples.points;
+  if (!mesh.colours.empty()) out->colours = SampleColours(mesh, out->samples);
   Status status;
   tbb::parallel_invoke(
       [&] {
@@ -60,7 +82,9 @@ Status Prepare(const TriangleMesh& mesh, const char* what, const MetricOptions& 
 DirectionErrors Measure(const PreparedSurface& from, const PreparedSurface& to,
                         double tolerance) {
   const std::size_t n = from.samples.size();
+  const bool colour = !from.colours.empty() && !to.colours.empty();
   std::vector<double> d1(n), d2(n), exact(n);
+  std::vector<Eigen::Vector3d> colour_error(colour ? n : 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -75,6 +99,10 @@ DirectionErrors Measure(const PreparedSurface& from, const PreparedSurface& to,
       d2[i] = along_normal * along_normal;
       // The nearest sample's triangle is close by: its distance bounds the exact search.
       exact[i] = to.surface->DistanceFrom(p, to.samples.triangles[nearest]);
+      if (colour) {
+        colour_error[i] =
+            (from.colours[i] - to.colours[nearest]).cast<double>().array().square().matrix();
+      }
     }
   });
   // Summed in order, so the result does not depend on thread scheduling.
@@ -86,7 +114,9 @@ DirectionErrors Measure(const PreparedSurface& from, const PreparedSurface& to,
     e.exact_rms += exact[i] * exact[i];
     e.exact_max = std::max(e.exact_max, exact[i]);
     if (exact[i] <= tolerance) ++within;
+    if (colour) e.colour_mse += colour_error[i];
   }
+  e.colour_mse /= double(n);
   e.d1_mse /= n;
   e.d2_mse /= n;
   e.exact_rms = std::sqrt(e.exact_rms / n);
@@ -95,6 +125,12 @@ DirectionErrors Measure(const PreparedSurface& from, const PreparedSurface& to,
 }
 
 }  // namespace
+
+/// 10 log10(255^2 / mse): the PSNR of 8-bit colour; +infinity when mse is 0.
+double ColourPsnr(double mse) {
+  if (mse <= 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(255.0 * 255.0 / mse);
+}
 
 double PsnrFromMse(double mse, double peak) {
   if (mse <= 0.0) return std::numeric_limits<double>::infinity();
@@ -137,6 +173,15 @@ StatusOr<FrameMetrics> ComputeFrameMetrics(const TriangleMesh& ref, const Triang
   m.completeness_rms = ref_to_test.exact_rms;
   m.hausdorff = std::max(test_to_ref.exact_max, ref_to_test.exact_max);
   m.coverage = ref_to_test.within_tolerance;
+  m.has_colour = !ref_surface.colours.empty() && !test_surface.colours.empty();
+  if (m.has_colour) {
+    const Eigen::Vector3d mse = test_to_ref.colour_mse.cwiseMax(ref_to_test.colour_mse);
+    m.y_psnr = ColourPsnr(mse[0]);
+    m.cb_psnr = ColourPsnr(mse[1]);
+    m.cr_psnr = ColourPsnr(mse[2]);
+    m.yuv_psnr = (6.0 * m.y_psnr + m.cb_psnr + m.cr_psnr) / 8.0;
+    m.y_psnr_test_to_ref = ColourPsnr(test_to_ref.colour_mse[0]);
+  }
   return m;
 }
 

@@ -41,6 +41,19 @@ struct FrameMetrics {
   double completeness_rms = 0;    ///< RMS exact distance reference samples -> test surface
   double hausdorff = 0;           ///< largest exact distance, either direction
   double coverage = 0;            ///< share of reference samples within the tolerance
+  /// Colour, when both meshes have vertex colours (MPEG pc_error's attribute PSNR): each
+  /// sample's colour (its triangle's vertex colours blended at it) against its nearest
+  /// sample's on the other surface, in full-range BT.709 Y Cb Cr; per channel the larger
+  /// direction's MSE; PSNR 10 log10(255^2 / MSE) (+inf at 0).
+  bool has_colour = false;
+  double y_psnr = 0;
+  double cb_psnr = 0;
+  double cr_psnr = 0;
+  /// (6 Y + Cb + Cr) / 8 of the three PSNRs, as MPEG weighs them.
+  double yuv_psnr = 0;
+  /// Y PSNR of the test surface's colour against the reference's (test->ref only): the
+  /// colour where the test surface is, whatever the reference has that it lacks.
+  double y_psnr_test_to_ref = 0;
 };
 
 /// 10 log10(3 peak^2 / mse), the pc_error PSNR; +infinity when mse is 0.

@@ -42,6 +42,9 @@ class GltfBuilder {
     return static_cast<int>(accessors_.size()) - 1;
   }
 
+  /// Marks accessor `accessor` as normalised (integers read as fractions of their range).
+  void NormaliseAccessor(int accessor) { accessors_[accessor]["normalized"] = true; }
+
   /// Float vectors (VEC3/VEC4 or SCALAR) with their bounds.
   template <int N>
   int AddFloats(const std::vector<std::array<float, N>>& values, const char* type, int target,
@@ -182,16 +185,27 @@ StatusOr<std::uint32_t> AddKeyGroup(MvidDecoder& decoder, const KeyGroupRun& run
   const int index = gltf->AddAccessor(
       gltf->AddView(indices.data(), indices.size() * 4, kElementArrayBuffer), kUnsignedInt,
       indices.size(), "SCALAR");
+  json attributes = {
+      {"POSITION", position}, {"NORMAL", normal}, {"JOINTS_0", joint}, {"WEIGHTS_0", weight}};
+  if (decoder.info().colour) {
+    // The base vertices' colours at the run's first frame (glTF's vertex colour does not
+    // change over an animation), as normalised RGBA bytes: 4 bytes keep every element aligned.
+    std::vector<Colour> colours;
+    MESHVID_RETURN_IF_ERROR(decoder.DecodeColours(run.first, 0, &colours));
+    std::vector<std::uint8_t> rgba;
+    for (std::size_t v = 0; v < base.vertex_count(); ++v) {
+      rgba.insert(rgba.end(), {colours[v][0], colours[v][1], colours[v][2], 255});
+    }
+    const int colour = gltf->AddAccessor(gltf->AddView(rgba.data(), rgba.size(), kArrayBuffer),
+                                         kUnsignedByte, base.vertex_count(), "VEC4");
+    gltf->NormaliseAccessor(colour);
+    attributes["COLOR_0"] = colour;
+  }
   const std::string name = "key group " + std::to_string(run.key_group);
-  meshes->push_back({{"name", name},
-                     {"primitives",
-                      json::array({{{"attributes",
-                                     {{"POSITION", position},
-                                      {"NORMAL", normal},
-                                      {"JOINTS_0", joint},
-                                      {"WEIGHTS_0", weight}}},
-                                    {"indices", index},
-                                    {"mode", 4}}})}});
+  meshes->push_back(
+      {{"name", name},
+       {"primitives",
+        json::array({{{"attributes", attributes}, {"indices", index}, {"mode", 4}}})}});
 
   // Nodes: the key group's root (its visibility), one joint per segment under it, and the
   // skinned mesh at the scene's root (glTF ignores a skinned mesh node's own transform).

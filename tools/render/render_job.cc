@@ -167,7 +167,13 @@ StatusOr<RenderJobStats> RunRenderJob(const RenderJobOptions& options,
     for (std::size_t i = 0; i < panels.size(); ++i) {
       Panel& panel = panels[i];
       std::vector<Eigen::Vector3f> colours;
-      if (panel.coloured) colours = ErrorColours(distances[i], error_max);
+      if (panel.coloured) {
+        colours = ErrorColours(distances[i], error_max);
+      } else if (!meshes[i].colours.empty()) {
+        // The surface's own colour (a capture's, a coloured file's or the ground truth's).
+        colours.reserve(meshes[i].colours.size());
+        for (const Colour& c : meshes[i].colours) colours.push_back(c.cast<float>() / 255.0f);
+      }
       MESHVID_RETURN_IF_ERROR(panel.renderer.SetMesh(meshes[i], std::move(colours)));
       RgbImage picture = panel.renderer.Render(camera);
       if (options.labels) {

@@ -114,10 +114,7 @@ StatusOr<long> RayCaster::Cast(const ViewCalibration& view, RayCastImage* image)
           image->depth[pixel] = hit.t;
           image->cos_incidence[pixel] = std::abs(dir.dot(hit.normal)) / norms;
           if (coloured) {
-            const Triangle& corners = triangles_[hit.triangle];
-            image->colour[pixel] = (1.0f - hit.u - hit.v) * colours_[corners[0]].cast<float>() +
-                                   hit.u * colours_[corners[1]].cast<float>() +
-                                   hit.v * colours_[corners[2]].cast<float>();
+            image->colour[pixel] = BlendColours(colours_, triangles_[hit.triangle], hit.u, hit.v);
           }
           ++local_hits;
         }

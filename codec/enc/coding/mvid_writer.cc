@@ -128,6 +128,11 @@ Status MvidWriter::BeginContainer() {
   header.streams.push_back({std::string(VideoCodecTag(settings.codec)),
                             static_cast<std::uint32_t>(layout_.width()),
                             static_cast<std::uint32_t>(layout_.height()), 10, "displacement"});
+  if (settings.colour) {
+    header.streams.push_back({std::string(VideoCodecTag(settings.codec)),
+                              static_cast<std::uint32_t>(layout_.width()),
+                              static_cast<std::uint32_t>(layout_.height()), 8, "colour"});
+  }
   header.metadata_json = settings.metadata_json;
   return container_->Begin(header);
 }
@@ -146,8 +151,37 @@ std::vector<std::vector<RigidTransform>> MvidWriter::DequantizeTransforms(
   return result;
 }
 
+template <typename Picture>
+Status MvidWriter::EncodePictures(const std::vector<Picture>& pictures, PictureFormat format,
+                                  int qp, std::vector<std::uint8_t>* extradata,
+                                  std::vector<std::vector<std::uint8_t>>* packets,
+                                  std::uint64_t* bytes) {
+  VideoEncoding video;
+  video.codec = settings_.codec;
+  video.width = layout_.width();
+  video.height = layout_.height();
+  video.frame_rate = settings_.frame_rate;
+  video.qp = qp;
+  video.effort = settings_.effort;
+  video.threads = settings_.threads;
+  video.format = format;
+  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<VideoEncoder> encoder, VideoEncoder::Create(video));
+  std::vector<VideoPacket> coded;
+  for (std::size_t f = 0; f < pictures.size(); ++f) {
+    MESHVID_RETURN_IF_ERROR(encoder->Encode(pictures[f], f == 0, &coded));
+  }
+  MESHVID_RETURN_IF_ERROR(encoder->Flush(&coded));
+  *extradata = encoder->extradata();
+  for (VideoPacket& packet : coded) {
+    *bytes += packet.data.size();
+    packets->push_back(std::move(packet.data));
+  }
+  return Status::Ok();
+}
+
 Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& transforms,
-                              const std::vector<std::vector<float>>& displacements) {
+                              const std::vector<std::vector<float>>& displacements,
+                              const std::vector<std::vector<Colour>>& colours) {
   const std::size_t frames = transforms.size();
   if (frames == 0 || frames > static_cast<std::size_t>(settings_.gof_size)) {
     return InvalidArgumentError("a group holds 1.." + std::to_string(settings_.gof_size) +
@@ -155,6 +189,11 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
   }
   if (displacements.size() != frames) {
     return InvalidArgumentError("a group needs one displacement field per frame");
+  }
+  if (colours.size() != (settings_.colour ? frames : 0)) {
+    return InvalidArgumentError(settings_.colour
+                                    ? "a group of a file with colour needs one colour field per frame"
+                                    : "colour given for a file without a colour stream");
   }
   const std::size_t samples = subdivision_.samples().size();
   float lowest = std::numeric_limits<float>::infinity();
@@ -170,6 +209,11 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
                                   std::to_string(displacements[f].size()) +
                                   " displacements for " + std::to_string(samples) + " samples");
     }
+    if (settings_.colour && colours[f].size() != samples) {
+      return InvalidArgumentError("frame " + std::to_string(next_frame_ + f) + " has " +
+                                  std::to_string(colours[f].size()) + " colours for " +
+                                  std::to_string(samples) + " samples");
+    }
     for (float d : displacements[f]) {
       if (!std::isfinite(d)) {
         return InvalidArgumentError("frame " + std::to_string(next_frame_ + f) +
@@ -184,34 +228,36 @@ Status MvidWriter::WriteGroup(const std::vector<std::vector<RigidTransform>>& tr
                            EncodeTransforms(transforms, quantization_, pivots_.pivots));
 
   // One encoder session per group keeps every group self-contained.
-  VideoEncoding video;
-  video.codec = settings_.codec;
-  video.width = layout_.width();
-  video.height = layout_.height();
-  video.frame_rate = settings_.frame_rate;
-  video.qp = settings_.qp;
-  video.effort = settings_.effort;
-  video.threads = settings_.threads;
-  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<VideoEncoder> encoder, VideoEncoder::Create(video));
-  std::vector<VideoPacket> packets;
+  std::vector<GreyPicture> pictures(frames);
   for (std::size_t f = 0; f < frames; ++f) {
-    GreyPicture picture = layout_.Pack(displacements[f], range);
-    picture.pts = static_cast<std::int64_t>(f);
-    MESHVID_RETURN_IF_ERROR(encoder->Encode(picture, f == 0, &packets));
+    pictures[f] = layout_.Pack(displacements[f], range);
+    pictures[f].pts = static_cast<std::int64_t>(f);
   }
-  MESHVID_RETURN_IF_ERROR(encoder->Flush(&packets));
-
   GroupOfFrames gof;
+  gof.packets.resize(settings_.colour ? 2 : 1);
+  std::vector<std::uint8_t> extradata;
+  MESHVID_RETURN_IF_ERROR(EncodePictures(pictures, PictureFormat::kGrey10, settings_.qp,
+                                         &extradata, &gof.packets[0], &stats_.video_bytes));
+  if (settings_.colour) {
+    std::vector<ColourPicture> colour_pictures(frames);
+    for (std::size_t f = 0; f < frames; ++f) {
+      colour_pictures[f] = layout_.PackColour(colours[f]);
+      colour_pictures[f].pts = static_cast<std::int64_t>(f);
+    }
+    // The colour video carries no configuration record (FFV1 codes it as version 1, which
+    // states its parameters in every frame).
+    std::vector<std::uint8_t> no_record;
+    MESHVID_RETURN_IF_ERROR(EncodePictures(colour_pictures, PictureFormat::kColour8,
+                                           settings_.colour_qp, &no_record, &gof.packets[1],
+                                           &stats_.colour_bytes));
+    if (!no_record.empty()) return InternalError("the colour video needs a configuration record");
+  }
+
   gof.gof_index = next_gof_;
   gof.first_frame = next_frame_;
   gof.frame_count = static_cast<std::uint32_t>(frames);
   gof.transforms =
-      EncodeGofSideInfo(settings_.packing, range, encoder->extradata(), coded_transforms.bytes);
-  gof.packets.resize(1);
-  for (VideoPacket& packet : packets) {
-    stats_.video_bytes += packet.data.size();
-    gof.packets[0].push_back(std::move(packet.data));
-  }
+      EncodeGofSideInfo(settings_.packing, range, extradata, coded_transforms.bytes);
   stats_.transform_bytes += gof.transforms.size();
   MESHVID_RETURN_IF_ERROR(container_->WriteGof(gof));
   next_frame_ += static_cast<std::uint32_t>(frames);

@@ -41,6 +41,9 @@ struct MvidWriterSettings {
   /// The base mesh coder; `base.allow_reorder` must stay false (Create refuses it).
   BaseMeshEncoding base;
   std::string metadata_json = "{}";  ///< free-form JSON object stored in the header
+  /// Write a colour stream: every group then needs a colour field per frame (WriteGroup).
+  bool colour = false;
+  int colour_qp = 24;  ///< the colour video's quantiser (see VideoEncoding::qp)
 };
 
 /// Writes a .mvid: Create() codes the first key group's base mesh and motion model, then
@@ -84,17 +87,24 @@ class MvidWriter {
       const std::vector<std::vector<RigidTransform>>& transforms) const;
 
   /// Writes one group: `transforms[frame][segment]` and `displacements[frame][sample]`
-  /// (subdivision().samples().size() each), 1..gof_size frames.
+  /// (subdivision().samples().size() each), 1..gof_size frames; with settings().colour, also
+  /// `colours[frame][sample]` (R G B per sample), else `colours` must be empty.
   Status WriteGroup(const std::vector<std::vector<RigidTransform>>& transforms,
-                    const std::vector<std::vector<float>>& displacements);
+                    const std::vector<std::vector<float>>& displacements,
+                    const std::vector<std::vector<Colour>>& colours = {});
   /// Writes the index and trailer.
   Status Finish();
   const MvidWriteStats& stats() const { return stats_; }
 
  private:
   MvidWriter() = default;
-  /// Writes the preamble and HEAD (the stream's picture size is the first key group's).
+  /// Writes the preamble and HEAD (the streams' picture size is the first key group's).
   Status BeginContainer();
+  /// Codes one group's pictures in a session of their own; appends the packets.
+  template <typename Picture>
+  Status EncodePictures(const std::vector<Picture>& pictures, PictureFormat format, int qp,
+                        std::vector<std::uint8_t>* extradata,
+                        std::vector<std::vector<std::uint8_t>>* packets, std::uint64_t* bytes);
   MvidWriterSettings settings_;
   std::unique_ptr<ContainerWriter> container_;
   TriangleMesh decoded_base_;

@@ -47,8 +47,28 @@ Status RecodeGroup(MvidDecoder& source, const VideoEncoding& settings, GroupOfFr
       ReplaceVideoConfig(gof->transforms, (*encoder)->extradata());
   if (!side.ok()) return side.status().WithContext(context);
   gof->transforms = std::move(*side);
-  gof->packets.assign(1, {});
+  gof->packets.assign(source.info().colour ? 2 : 1, {});
   for (VideoPacket& packet : packets) gof->packets[0].push_back(std::move(packet.data));
+  if (!source.info().colour) return Status::Ok();
+
+  // The colour video, in the same codec, with no configuration record (spec/mvid-codec.md).
+  video.format = PictureFormat::kColour8;
+  MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<VideoEncoder> colour_encoder,
+                           VideoEncoder::Create(video));
+  packets.clear();
+  for (std::uint32_t f = 0; f < gof->frame_count; ++f) {
+    MESHVID_ASSIGN_OR_RETURN(const ColourPicture* decoded,
+                             source.DecodedColourPicture(gof->first_frame + f));
+    ColourPicture picture = *decoded;
+    picture.pts = f;
+    MESHVID_RETURN_IF_ERROR(
+        colour_encoder->Encode(picture, f == 0, &packets).WithContext(context + " colour"));
+  }
+  MESHVID_RETURN_IF_ERROR(colour_encoder->Flush(&packets).WithContext(context + " colour"));
+  if (!colour_encoder->extradata().empty()) {
+    return InternalError(context + ": the colour video needs a configuration record");
+  }
+  for (VideoPacket& packet : packets) gof->packets[1].push_back(std::move(packet.data));
   return Status::Ok();
 }
 
@@ -101,11 +121,9 @@ StatusOr<TranscodeSummary> TranscodeVideo(const std::string& input, const std::s
   MESHVID_ASSIGN_OR_RETURN(std::unique_ptr<MvidDecoder> source, MvidDecoder::OpenFile(input));
 
   ContainerHeader header = reader.header();
-  if (header.streams.size() != 1) {
-    return UnsupportedError(input + ": holds " + std::to_string(header.streams.size()) +
-                            " video streams; transcoding knows the one displacement stream");
-  }
-  header.streams[0].codec = std::string(VideoCodecTag(options.codec));
+  // The decoder has checked the streams: the displacements, and perhaps the colour.
+  for (StreamInfo& stream : header.streams)
+    stream.codec = std::string(VideoCodecTag(options.codec));
   if (!options.metadata_json.empty()) header.metadata_json = options.metadata_json;
 
   VideoEncoding settings;
@@ -123,9 +141,13 @@ StatusOr<TranscodeSummary> TranscodeVideo(const std::string& input, const std::s
   ContainerWriter writer(OstreamSink(file->stream(), output));
   MESHVID_RETURN_IF_ERROR(writer.Begin(header));
   const GofRewrite recode = [&](std::size_t g, GroupOfFrames* gof) -> Status {
-    for (const auto& packet : gof->packets[0]) summary.input_video_bytes += packet.size();
+    for (const auto& stream : gof->packets) {
+      for (const auto& packet : stream) summary.input_video_bytes += packet.size();
+    }
     MESHVID_RETURN_IF_ERROR(RecodeGroup(*source, settings, gof).WithContext(input));
-    for (const auto& packet : gof->packets[0]) summary.output_video_bytes += packet.size();
+    for (const auto& stream : gof->packets) {
+      for (const auto& packet : stream) summary.output_video_bytes += packet.size();
+    }
     if (!ReportProgress(options.progress, "transcoding", long(g) + 1, long(summary.groups))) {
       return CancelledError("cancelled");
     }

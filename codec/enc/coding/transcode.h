@@ -31,7 +31,8 @@ struct TranscodeSummary {
   std::uint32_t frames = 0;
   std::uint32_t groups = 0;
   std::uint64_t input_bytes = 0, output_bytes = 0;              ///< whole files
-  std::uint64_t input_video_bytes = 0, output_video_bytes = 0;  ///< the pictures' packets
+  std::uint64_t input_video_bytes = 0,
+                output_video_bytes = 0;  ///< the videos' packets (displacement and colour)
   /// How far the decoded displacements moved, against the input's, over every sample of every
   /// frame, in scene units: root mean square and largest.
   double displacement_rms_change = 0, displacement_max_change = 0;

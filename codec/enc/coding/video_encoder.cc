@@ -58,6 +58,12 @@ Status ConfigureCodec(const VideoEncoding& s, AVCodecContext* context) {
     }
     case VideoCodec::kFfv1: {
       context->gop_size = 1;  // intra only
+      if (s.format == PictureFormat::kColour8) {
+        // FFV1 version 1 states its parameters in every frame, so the colour stream needs
+        // no configuration record (spec/mvid-codec.md, colour video).
+        context->level = 1;
+        return Status::Ok();
+      }
       // FFV1 version 3: its configuration record (extradata) travels with each group.
       context->level = 3;
       context->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;

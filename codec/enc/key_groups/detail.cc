@@ -12,13 +12,6 @@ namespace meshvid {
 
 namespace {
 
-/// The colour of `view` where `hit` struck it: its triangle's vertex colours, blended.
-Eigen::Vector3f HitColour(const TriangleMesh& view, const ShotHit& hit) {
-  const Triangle& t = view.triangles[hit.triangle];
-  return (1.0f - hit.u - hit.v) * view.colours[t[0]].cast<float>() +
-         hit.u * view.colours[t[1]].cast<float>() + hit.v * view.colours[t[2]].cast<float>();
-}
-
 /// |cos| of the angle at which a camera (or, without one, the shot) sees `hit`.
 float SeenCos(const ShotHit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
               const ViewCalibration* camera) {
@@ -73,7 +66,8 @@ StatusOr<std::size_t> MeasureDisplacements(const RegularSubdivision& subdivision
         const ShotHit& hit = hits_of_view[i];
         per_view[v][i] = hit.distance;
         if (!hit.hit()) continue;
-        colours->colour[v][i] = HitColour(views[v], hit);
+        colours->colour[v][i] =
+            BlendColours(views[v].colours, views[v].triangles[hit.triangle], hit.u, hit.v);
         colours->weight[v][i] = ViewingWeight(SeenCos(hit, origins[i], directions[i], camera));
       }
     });
@@ -141,10 +135,23 @@ namespace {
 
 /// What no measurement reaches in `frame`: spread from filled neighbours, ring by ring (a
 /// multi-source breadth-first order, so each sample averages the neighbours of earlier
-/// rings); 0 where the frame has no value at all.
-void SpreadIntoUnreached(const SampleGraph& graph, std::vector<float>* frame_values) {
+/// rings); where no value reaches (a part of the lattice apart from every measurement), the
+/// fill `unreached` asks for. Without `unreached.spread_everywhere`, the first ring is seeded
+/// from the samples queued so far, in index order, so a sample can join it with no valued
+/// neighbour and take 0.
+void SpreadIntoUnreached(const SampleGraph& graph, const UnreachedFill& unreached,
+                         std::vector<float>* frame_values) {
   std::vector<float>& frame = *frame_values;
   const std::size_t samples = frame.size();
+  float apart = unreached.no_values;
+  if (unreached.frame_mean) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (float value : frame) {
+      if (!std::isnan(value)) sum += value, ++count;
+    }
+    if (count > 0) apart = static_cast<float>(sum / count);
+  }
   std::vector<std::uint32_t> ring, next_ring;
   std::vector<float> values;
   std::vector<char> queued(samples);
@@ -152,7 +159,7 @@ void SpreadIntoUnreached(const SampleGraph& graph, std::vector<float>* frame_val
     queued[i] = !std::isnan(frame[i]);
   }
   for (std::uint32_t i = 0; i < samples; ++i) {
-    if (!queued[i]) continue;
+    if (unreached.spread_everywhere ? std::isnan(frame[i]) : !queued[i]) continue;
     for (std::uint32_t k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
       const std::uint32_t n = graph.neighbours[k];
       if (!queued[n]) queued[n] = 1, ring.push_back(n);
@@ -182,14 +189,15 @@ void SpreadIntoUnreached(const SampleGraph& graph, std::vector<float>* frame_val
     ring.swap(next_ring);
   }
   for (std::size_t i = 0; i < samples; ++i) {
-    if (std::isnan(frame[i])) frame[i] = 0;  // a frame with no measurement at all
+    if (std::isnan(frame[i])) frame[i] = apart;
   }
 }
 
 }  // namespace
 
 std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* last_measured,
-                                  std::vector<std::vector<float>>* frames) {
+                                  std::vector<std::vector<float>>* frames,
+                                  const UnreachedFill& unreached) {
   const std::size_t count = frames->size();
   if (count == 0) return 0;
   const std::size_t samples = (*frames)[0].size();
@@ -234,7 +242,7 @@ std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* 
     }
   }
   for (std::size_t f = 0; f < count; ++f) {
-    SpreadIntoUnreached(graph, &result[f]);
+    SpreadIntoUnreached(graph, unreached, &result[f]);
     for (std::size_t i = 0; i < samples; ++i) {
       if (std::isnan((*frames)[f][i])) ++filled;
     }

@@ -49,13 +49,30 @@ struct SampleGraph {
   static SampleGraph Build(const RegularSubdivision& subdivision);
 };
 
+/// What FillDisplacementGroup gives a sample that no measurement of its frame reaches through
+/// the lattice (a part of the base that no view saw in the whole group).
+struct UnreachedFill {
+  /// Spread from every valued sample, ring by ring, to every sample it reaches. The
+  /// displacements keep the seeding their files were made with (false): a sample beyond the
+  /// valued samples' first ring may take 0, the base surface, instead of a spread value;
+  /// changing it changes every file the encoder writes.
+  bool spread_everywhere = false;
+  /// Take the mean of the frame's values before the spread (for colour: the subject's
+  /// average colour rather than black), else `no_values`.
+  bool frame_mean = false;
+  /// The value where the frame has none to take (0: no displacement).
+  float no_values = 0;
+};
+
 /// Fills the misses (kNoHit) of a group of consecutive frames (docs/encoder-method.md section 4): a
 /// missing sample takes the average of its nearest measurements before and after it in time
 /// (`last_measured` carries each sample's latest measurement across groups) and of its
 /// measured lattice neighbours in the same frame; what is still missing is filled by
-/// spreading from the filled neighbours. Returns the number of samples filled.
+/// spreading from the filled neighbours, and what that does not reach as `unreached` says.
+/// Returns the number of samples filled.
 std::size_t FillDisplacementGroup(const SampleGraph& graph, std::vector<float>* last_measured,
-                                  std::vector<std::vector<float>>* frames);
+                                  std::vector<std::vector<float>>* frames,
+                                  const UnreachedFill& unreached = {});
 
 }  // namespace meshvid
 

@@ -24,6 +24,15 @@ float FirstHit(const EmbreeScene& scene, const Eigen::Vector3f& origin,
   return hit.t;
 }
 
+/// Calls `shoot(i)` for every ray i < `count`, in parallel.
+template <typename Shoot>
+void ForEachRay(std::size_t count, const Shoot& shoot) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i < range.end(); ++i) shoot(i);
+                    });
+}
+
 }  // namespace
 
 ShootingTarget::~ShootingTarget() = default;
@@ -65,24 +74,16 @@ void ShootingTarget::ShootAll(std::span<const Eigen::Vector3f> origins,
                               std::span<const Eigen::Vector3f> directions,
                               const ShotLimits& limits, std::vector<float>* distances) const {
   distances->resize(origins.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 1024),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                        (*distances)[i] = Shoot(origins[i], directions[i], limits);
-                      }
-                    });
+  ForEachRay(origins.size(),
+             [&](std::size_t i) { (*distances)[i] = Shoot(origins[i], directions[i], limits); });
 }
 
 void ShootingTarget::ShootAllHits(std::span<const Eigen::Vector3f> origins,
                                   std::span<const Eigen::Vector3f> directions,
                                   const ShotLimits& limits, std::vector<ShotHit>* hits) const {
   hits->resize(origins.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 1024),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                        (*hits)[i] = ShootHit(origins[i], directions[i], limits);
-                      }
-                    });
+  ForEachRay(origins.size(),
+             [&](std::size_t i) { (*hits)[i] = ShootHit(origins[i], directions[i], limits); });
 }
 
 }  // namespace meshvid

@@ -109,6 +109,21 @@ TEST(ColourCliTest, ACapturesColourIsCodedAndDecoded) {
               view_error, decoded_error);
   EXPECT_LT(decoded_error, 0.5 * view_error);
 
+  // Export: the OBJ of a key group holds its first frame's colours (OBJ + PC2 cannot animate
+  // them), and glTF its base vertices' as COLOR_0.
+  run = testing::RunMeshvid(
+      "export '" + dir.File("colour.mvid") + "' --frames 2:3 -q -o '" + dir.File("x.obj") + "'",
+      dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto exported = ReadMesh(dir.File("x.obj"));
+  ASSERT_TRUE(exported.ok()) << exported.status().ToString();
+  ASSERT_EQ(exported->colours.size(), exported->vertex_count());
+  EXPECT_EQ(exported->colours, decoded->colours);  // frame 2 at the finest level, as decoded
+  run = testing::RunMeshvid(
+      "export '" + dir.File("colour.mvid") + "' -q -o '" + dir.File("x.glb") + "'", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(testing::ReadFile(dir.File("x.glb")).find("\"COLOR_0\""), std::string::npos);
+
   // The geometry-only file decodes without colour.
   run = testing::RunMeshvid("decode '" + dir.File("grey.mvid") + "' --frames 2:3 --level 2 -q -o '" +
                                 dir.File("g{frame}.ply") + "'",

@@ -55,6 +55,52 @@ TEST(ConcatCliTest, PiecesCutFromAFileJoinBackIntoItByteForByte) {
   EXPECT_EQ(testing::ReadFile(dir.File("joined.mvid")), testing::ReadFile(dir.File("whole.mvid")));
 }
 
+// A cut that starts in a later key group states that key group's picture size in HEAD for
+// every stream, the colour stream's too (spec/mvid-codec.md: both streams have the size of
+// key group 0's layout), and decodes with its colours.
+TEST(ConcatCliTest, ACutOfAColourFileGivesEveryStreamItsFirstKeyGroupsSize) {
+  MESHVID_REQUIRE_CLI();
+  testing::TempDir dir;
+  testing::CliRun run = testing::RunMeshvid(
+      "simulate scene:arm-block -o '" + dir.File("cap") + "' --frames 0:8 --res 160x120 -q", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  run = testing::RunMeshvid(
+      "encode '" + dir.File("cap/manifest.json") + "' -q -o '" + dir.File("a.mvid") + "'", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::unique_ptr<MvidDecoder> whole = testing::OpenDecoderOrFail(dir.File("a.mvid"));
+  ASSERT_NE(whole, nullptr);
+  ASSERT_TRUE(whole->info().colour);
+  // The first key group whose pictures differ in size from key group 0's.
+  const auto first_size = whole->PictureSizeOf(0);
+  ASSERT_TRUE(first_size.ok());
+  std::uint32_t from = 0;
+  for (const MvidKeyGroupSpan& span : whole->info().key_groups) {
+    const auto size = whole->PictureSizeOf(span.first_frame);
+    ASSERT_TRUE(size.ok());
+    if (*size != *first_size) {
+      from = span.first_frame;
+      break;
+    }
+  }
+  ASSERT_GT(from, 0u) << "every key group of this capture has key group 0's picture size";
+  run = testing::RunMeshvid("cut '" + dir.File("a.mvid") + "' --frames " + std::to_string(from) +
+                                ": -o '" + dir.File("cut.mvid") + "' -q",
+                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  run = testing::RunMeshvid("info --check '" + dir.File("cut.mvid") + "'", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+  std::unique_ptr<MvidDecoder> cut = testing::OpenDecoderOrFail(dir.File("cut.mvid"));
+  ASSERT_NE(cut, nullptr);
+  const auto expected = whole->PictureSizeOf(from);
+  ASSERT_TRUE(expected.ok());
+  EXPECT_EQ(cut->info().picture_width, expected->first);
+  EXPECT_EQ(cut->info().picture_height, expected->second);
+  std::vector<Colour> a, b;
+  ASSERT_TRUE(whole->DecodeColours(from, 1, &a).ok());
+  ASSERT_TRUE(cut->DecodeColours(0, 1, &b).ok());
+  EXPECT_EQ(a, b);
+}
+
 TEST(ConcatCliTest, ACutRoundsOutToItsGroupsSaysSoAndDecodesAsThoseFrames) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;

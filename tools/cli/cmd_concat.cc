@@ -194,13 +194,16 @@ int RunCut(const CutArguments& args) {
   ContainerHeader header = reader->header();
   header.frame_count = kept_end - kept_first;
   // HEAD's picture size is the first key group's: the cut's, when it starts in a later one.
-  if (reader->KeyGroupOfGof(*first_gof) != 0 && header.streams.size() == 1) {
+  // Every stream has it (the displacements', and the colour's where there is one).
+  if (reader->KeyGroupOfGof(*first_gof) != 0) {
     StatusOr<std::unique_ptr<MvidDecoder>> decoder = MvidDecoder::OpenFile(args.input);
     if (!decoder.ok()) return ReportError(decoder.status());
     StatusOr<std::pair<int, int>> size = (*decoder)->PictureSizeOf(kept_first);
     if (!size.ok()) return ReportError(size.status());
-    header.streams[0].width = static_cast<std::uint32_t>(size->first);
-    header.streams[0].height = static_cast<std::uint32_t>(size->second);
+    for (StreamInfo& stream : header.streams) {
+      stream.width = static_cast<std::uint32_t>(size->first);
+      stream.height = static_cast<std::uint32_t>(size->second);
+    }
   }
   // The metadata is kept as it is, but for the capture frames the cut holds.
   nlohmann::json metadata = MetadataOf(header);

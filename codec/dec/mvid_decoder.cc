@@ -387,6 +387,8 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
     // A group starts with a key frame; FFV1 codes every frame as one.
     packet.keyframe = p == 0 || info_.codec == VideoCodec::kFfv1;
     MESHVID_RETURN_IF_ERROR(video->Decode(packet, &group->pictures).WithContext(context));
+    // Stop at the first picture too many rather than keep what a hostile stream makes.
+    if (group->pictures.size() > gof.frame_count) break;
   }
   MESHVID_RETURN_IF_ERROR(video->Flush(&group->pictures).WithContext(context));
   if (group->pictures.size() != gof.frame_count) {
@@ -413,6 +415,7 @@ Status MvidDecoder::DecodeColourVideo(const GroupOfFrames& gof, const std::strin
     packet.keyframe = p == 0 || info_.codec == VideoCodec::kFfv1;
     MESHVID_RETURN_IF_ERROR(
         (*created)->Decode(packet, &group->colour_pictures).WithContext(context + " colour"));
+    if (group->colour_pictures.size() > gof.frame_count) break;  // too many: refused below
   }
   MESHVID_RETURN_IF_ERROR(
       (*created)->Flush(&group->colour_pictures).WithContext(context + " colour"));

@@ -3,6 +3,7 @@
 // only during its frames.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -24,7 +25,7 @@ struct Glb {
   json gltf;
   std::string bin;
 
-  /// Accessor `a`'s components (float, unsigned byte or unsigned int) as floats.
+  /// Accessor `a`'s components (float, unsigned byte, short or int) as floats.
   std::vector<float> Read(int a) const {
     const json& accessor = gltf["accessors"][a];
     const json& view = gltf["bufferViews"][accessor["bufferView"].get<int>()];
@@ -36,6 +37,12 @@ struct Glb {
       switch (accessor["componentType"].get<int>()) {
         case 5126: std::memcpy(&out[i], data + 4 * i, 4); break;
         case 5121: out[i] = static_cast<std::uint8_t>(data[i]); break;
+        case 5123: {
+          std::uint16_t v;
+          std::memcpy(&v, data + 2 * i, 2);
+          out[i] = static_cast<float>(v);
+          break;
+        }
         case 5125: {
           std::uint32_t v;
           std::memcpy(&v, data + 4 * i, 4);
@@ -136,6 +143,45 @@ TEST(GltfExportTest, SkinAndAnimationPoseTheBaseAsTheDecoderDoes) {
         ASSERT_LT((posed - expected[v]).norm(), 1e-5f) << "key group " << k << " frame "
                                                        << frame << " vertex " << v;
       }
+    }
+  }
+}
+
+// Vertex colour: COLOR_0 of each key group's primitive holds its base vertices' colours at
+// the run's first frame, linearised from the decoded (sRGB) colour as glTF defines it, as
+// normalised unsigned shorts with alpha 1.
+TEST(GltfExportTest, VertexColourIsTheDecodedColourMadeLinear) {
+  const std::string golden = std::string(MESHVID_GOLDEN_DIR) + "/sphere.colour.mvid";
+  auto decoder = MvidDecoder::OpenFile(golden);
+  ASSERT_TRUE(decoder.ok()) << decoder.status().ToString();
+  ASSERT_TRUE((*decoder)->info().colour);
+  auto bytes = EncodeGltf(**decoder, {});
+  ASSERT_TRUE(bytes.ok()) << bytes.status().message();
+  const Glb glb = Parse(*bytes);
+  const json& meshes = glb.gltf["meshes"];
+  const std::uint32_t first_frames[] = {0, 4};  // the golden file's two key groups
+  ASSERT_EQ(meshes.size(), 2u);
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    const json& attributes = meshes[k]["primitives"][0]["attributes"];
+    ASSERT_TRUE(attributes.contains("COLOR_0")) << "key group " << k;
+    const json& accessor = glb.gltf["accessors"][attributes["COLOR_0"].get<int>()];
+    EXPECT_EQ(accessor["componentType"], 5123);
+    EXPECT_EQ(accessor["normalized"], true);
+    EXPECT_EQ(accessor["type"], "VEC4");
+    const int positions = attributes["POSITION"].get<int>();
+    ASSERT_EQ(accessor["count"], glb.gltf["accessors"][positions]["count"]);
+    const std::vector<float> rgba = glb.Read(attributes["COLOR_0"].get<int>());
+    std::vector<Colour> colours;
+    ASSERT_TRUE((*decoder)->DecodeColours(first_frames[k], 0, &colours).ok());
+    ASSERT_EQ(rgba.size(), 4 * colours.size());
+    for (std::size_t v = 0; v < colours.size(); ++v) {
+      for (int c = 0; c < 3; ++c) {
+        const double srgb = colours[v][c] / 255.0;
+        const double linear =
+            srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);
+        EXPECT_NEAR(rgba[4 * v + c] / 65535.0, linear, 1.0 / 65535) << "vertex " << v;
+      }
+      EXPECT_EQ(rgba[4 * v + 3], 65535.0f);
     }
   }
 }

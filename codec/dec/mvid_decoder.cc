@@ -20,7 +20,12 @@ struct MvidDecoder::Group {
   GofSideInfo side;
   const DisplacementLayout* layout = nullptr;  ///< the layout of side.packing
   std::vector<GreyPicture> pictures;  ///< in presentation order, one per frame
-  std::vector<ColourPicture> colour_pictures;  ///< the same, of the colour stream (if any)
+  /// The colour stream's packets (files with one), decoded into colour_pictures when colour
+  /// is first asked for, so geometry alone never pays for it.
+  std::vector<std::vector<std::uint8_t>> colour_packets;
+  std::vector<ColourPicture> colour_pictures;  ///< in presentation order, once decoded
+  std::uint32_t frame_count = 0;
+  std::string context;  ///< "FILE: group K", for errors
 };
 
 /// One decoded key group: its geometry and the bytes it came from.
@@ -338,6 +343,7 @@ StatusOr<const GreyPicture*> MvidDecoder::DisplacementPicture(std::uint32_t fram
 StatusOr<const ColourPicture*> MvidDecoder::DecodedColourPicture(std::uint32_t frame) {
   if (!info_.colour) return InvalidArgumentError(name_ + " has no colour stream");
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  MESHVID_RETURN_IF_ERROR(DecodeColourVideo(group_.get()));
   return &group_->colour_pictures[frame - group_->first_frame];
 }
 
@@ -387,39 +393,48 @@ Status MvidDecoder::LoadGroupOf(std::uint32_t frame) {
     // A group starts with a key frame; FFV1 codes every frame as one.
     packet.keyframe = p == 0 || info_.codec == VideoCodec::kFfv1;
     MESHVID_RETURN_IF_ERROR(video->Decode(packet, &group->pictures).WithContext(context));
+    // Stop at the first picture too many rather than keep what a hostile stream makes.
+    if (group->pictures.size() > gof.frame_count) break;
   }
   MESHVID_RETURN_IF_ERROR(video->Flush(&group->pictures).WithContext(context));
   if (group->pictures.size() != gof.frame_count) {
     return CorruptError(context + ": the video gives " + std::to_string(group->pictures.size()) +
                         " pictures for " + std::to_string(gof.frame_count) + " frames");
   }
-  if (info_.colour) MESHVID_RETURN_IF_ERROR(DecodeColourVideo(gof, context, group.get()));
+  if (info_.colour) {
+    if (gof.packets.size() < 2) return CorruptError(context + ": the colour stream is missing");
+    group->colour_packets = gof.packets[1];
+  }
+  group->frame_count = gof.frame_count;
+  group->context = context;
   group_ = std::move(group);
   return Status::Ok();
 }
 
-Status MvidDecoder::DecodeColourVideo(const GroupOfFrames& gof, const std::string& context,
-                                      Group* group) {
-  if (gof.packets.size() < 2) return CorruptError(context + ": the colour stream is missing");
+Status MvidDecoder::DecodeColourVideo(Group* group) {
+  if (!group->colour_pictures.empty()) return Status::Ok();
+  const std::string& context = group->context;
   // The colour video carries no configuration record (spec/mvid-codec.md, colour video).
   StatusOr<std::unique_ptr<VideoDecoder>> created =
       VideoDecoder::Create(info_.codec, group->layout->width(), group->layout->height(), {},
                            options_.threads, PictureFormat::kColour8);
   if (!created.ok()) return created.status().WithContext(context + " colour");
   VideoPacket packet;
-  for (std::size_t p = 0; p < gof.packets[1].size(); ++p) {
-    packet.data = gof.packets[1][p];
+  for (std::size_t p = 0; p < group->colour_packets.size(); ++p) {
+    packet.data = group->colour_packets[p];
     packet.pts = packet.dts = static_cast<std::int64_t>(p);
     packet.keyframe = p == 0 || info_.codec == VideoCodec::kFfv1;
     MESHVID_RETURN_IF_ERROR(
         (*created)->Decode(packet, &group->colour_pictures).WithContext(context + " colour"));
+    if (group->colour_pictures.size() > group->frame_count) break;  // too many: refused below
   }
   MESHVID_RETURN_IF_ERROR(
       (*created)->Flush(&group->colour_pictures).WithContext(context + " colour"));
-  if (group->colour_pictures.size() != gof.frame_count) {
-    return CorruptError(context + ": the colour video gives " +
-                        std::to_string(group->colour_pictures.size()) + " pictures for " +
-                        std::to_string(gof.frame_count) + " frames");
+  if (group->colour_pictures.size() != group->frame_count) {
+    const std::size_t pictures = group->colour_pictures.size();
+    group->colour_pictures.clear();  // asked again, the same error
+    return CorruptError(context + ": the colour video gives " + std::to_string(pictures) +
+                        " pictures for " + std::to_string(group->frame_count) + " frames");
   }
   return Status::Ok();
 }
@@ -491,6 +506,7 @@ Status MvidDecoder::DecodeColours(std::uint32_t frame, int level, std::vector<Co
   if (!info_.colour) return InvalidArgumentError(name_ + " has no colour stream");
   MESHVID_RETURN_IF_ERROR(CheckLevel(level));
   MESHVID_RETURN_IF_ERROR(LoadGroupOf(frame));
+  MESHVID_RETURN_IF_ERROR(DecodeColourVideo(group_.get()));
   group_->layout->UnpackColour(group_->colour_pictures[frame - group_->first_frame],
                                key_group_->geometry.subdivision().sample_count(level), colours);
   return Status::Ok();

@@ -170,8 +170,8 @@ class MvidDecoder {
   MvidDecoder() = default;
   /// Checks the header and fills info_ from it.
   Status ReadHeader(const ContainerHeader& header, const std::string& name);
-  /// Decodes `gof`'s colour video into `group` (files with a colour stream).
-  Status DecodeColourVideo(const GroupOfFrames& gof, const std::string& context, Group* group);
+  /// Decodes `group`'s colour video (files with a colour stream) unless it is decoded.
+  Status DecodeColourVideo(Group* group);
   /// Makes key group `k` the current one (decoding its BASE and MOTN unless it already is);
   /// fills info_'s base figures from key group 0.
   Status LoadKeyGroup(std::size_t k);

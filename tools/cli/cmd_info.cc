@@ -22,12 +22,16 @@ struct InfoArguments {
   std::string json;  ///< --json TARGET: a file, or "-" for stdout
 };
 
-/// Decodes every group once (transforms and video), so a damaged stream is found.
+/// Decodes every group once (transforms, displacement and colour video), so a damaged stream
+/// is found.
 Status DecodeEveryGroup(MvidDecoder& decoder, const ProgressCallback& progress) {
   const MvidInfo& info = decoder.info();
   std::vector<float> displacements;
+  std::vector<Colour> colours;
   for (std::uint32_t frame = 0; frame < info.frame_count; ++frame) {
     MESHVID_RETURN_IF_ERROR(decoder.DecodeDisplacements(frame, &displacements));
+    // The colour video is decoded only when asked for.
+    if (info.colour) MESHVID_RETURN_IF_ERROR(decoder.DecodeColours(frame, 0, &colours));
     MESHVID_RETURN_IF_ERROR(decoder.DecodeTransforms(frame).status());
     if (!ReportProgress(progress, "checking", frame + 1, info.frame_count)) {
       return CancelledError("cancelled");

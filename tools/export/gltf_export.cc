@@ -1,6 +1,7 @@
 #include "tools/export/gltf_export.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -12,6 +13,12 @@
 
 namespace meshvid {
 namespace {
+
+/// The linear value in [0, 1] of an 8-bit sRGB-encoded channel (IEC 61966-2-1).
+double SrgbToLinear(std::uint8_t code) {
+  const double v = code / 255.0;
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
 
 using json = nlohmann::json;
 
@@ -189,15 +196,21 @@ StatusOr<std::uint32_t> AddKeyGroup(MvidDecoder& decoder, const KeyGroupRun& run
       {"POSITION", position}, {"NORMAL", normal}, {"JOINTS_0", joint}, {"WEIGHTS_0", weight}};
   if (decoder.info().colour) {
     // The base vertices' colours at the run's first frame (glTF's vertex colour does not
-    // change over an animation), as normalised RGBA bytes: 4 bytes keep every element aligned.
+    // change over an animation). glTF's vertex colour is linear and meshvid's is display
+    // (sRGB) colour, so each channel is linearised and kept as a normalised unsigned short,
+    // which keeps the dark tones' steps; RGBA keeps every element 4-byte aligned.
     std::vector<Colour> colours;
     MESHVID_RETURN_IF_ERROR(decoder.DecodeColours(run.first, 0, &colours));
-    std::vector<std::uint8_t> rgba;
+    std::vector<std::uint16_t> rgba;
     for (std::size_t v = 0; v < base.vertex_count(); ++v) {
-      rgba.insert(rgba.end(), {colours[v][0], colours[v][1], colours[v][2], 255});
+      for (int c = 0; c < 3; ++c) {
+        rgba.push_back(static_cast<std::uint16_t>(std::lround(SrgbToLinear(colours[v][c]) * 65535)));
+      }
+      rgba.push_back(65535);
     }
-    const int colour = gltf->AddAccessor(gltf->AddView(rgba.data(), rgba.size(), kArrayBuffer),
-                                         kUnsignedByte, base.vertex_count(), "VEC4");
+    const int colour = gltf->AddAccessor(
+        gltf->AddView(rgba.data(), rgba.size() * sizeof(std::uint16_t), kArrayBuffer),
+        kUnsignedShort, base.vertex_count(), "VEC4");
     gltf->NormaliseAccessor(colour);
     attributes["COLOR_0"] = colour;
   }

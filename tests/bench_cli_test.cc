@@ -131,6 +131,11 @@ TEST(BenchCliTest, DecodeNoWriteReportsSpeedAndWritesNothing) {
   EXPECT_EQ(files, 3);  // t.json and the captured stdout/stderr only
 }
 
+/// The Y PSNR (eval's, both directions) the baseline's decoded frames of the simulated
+/// arm-block at 160x120 must exceed: the fused frames cover only the part the views see, so
+/// the ground truth's unseen side takes the nearest seen colour. Measured 20.7 dB.
+constexpr double kBaselineColourPsnrFloor = 18.0;
+
 TEST(BenchCliTest, BaselineCodesEveryFrameAtEverySetting) {
   MESHVID_REQUIRE_CLI();
   testing::TempDir dir;
@@ -188,6 +193,24 @@ TEST(BenchCliTest, BaselineCodesEveryFrameAtEverySetting) {
     EXPECT_TRUE(std::isfinite(figures->frame_d1_psnr[t]));
   }
   EXPECT_TRUE(std::isfinite(figures->d1_psnr_mean_of_frames));
+  // The simulated capture has colour: every coded mesh carries the views' colour per vertex,
+  // its bytes counted apart, and the decoded frames are evaluated for colour too.
+  for (const BaselineSetting& s : summary->settings) {
+    EXPECT_GT(s.colour_bytes_total, 0u);
+    EXPECT_LT(s.colour_bytes_total, s.bytes_total);
+  }
+  EXPECT_GT(figures->y_psnr, kBaselineColourPsnrFloor);
+  EXPECT_GE(figures->yuv_psnr, figures->y_psnr);
+  run = testing::RunMeshvid("bench-baseline \"" + cap + "/manifest.json\" -o \"" +
+                                dir.File("grey") + "\" --bits 12 --no-colour --json \"" +
+                                dir.File("grey.json") + "\" -q",
+                            dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto grey = ParseBaselineSummary(testing::ReadFile(dir.File("grey.json")), "grey.json");
+  ASSERT_TRUE(grey.ok()) << grey.status().ToString();
+  EXPECT_EQ(grey->settings[0].colour_bytes_total, 0u);
+  EXPECT_EQ(grey->settings[0].bytes_total,
+            summary->settings[1].bytes_total - summary->settings[1].colour_bytes_total);
 
   // Decimated to a vertex budget, as a per-frame player streams it: fewer vertices, fewer bytes.
   run = testing::RunMeshvid("bench-baseline \"" + cap + "/manifest.json\" -o \"" +

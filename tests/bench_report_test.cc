@@ -142,6 +142,42 @@ TEST(BenchReportTest, DivergenceTableHasOneRowPerRecord) {
   EXPECT_TRUE(Contains(md2, "- fake 3-arc: no av1 q40 point"));
 }
 
+TEST(BenchReportTest, ColourTableComparesTheDefaultPointWithTheBaselineBest) {
+  BenchRecord coloured = testing::FakeRecord();
+  coloured.rig = "6-ring";
+  BenchPoint* m = FindPoint(coloured, kMethodMeshvid, "av1", 40, 1);      // 100000 bytes/frame
+  BenchPoint* b = FindPoint(coloured, kMethodBaseline, "draco", 14, -1);  // the best D1
+  ASSERT_TRUE(m != nullptr && b != nullptr);
+  m->y_psnr = 32.5;
+  m->yuv_psnr = 34;
+  m->colour_bytes_per_frame = 30000;
+  b->y_psnr = 33;
+  b->yuv_psnr = 35;
+  b->colour_bytes_per_frame = 200000;
+  BenchRecord failed_sim;
+  failed_sim.sequence = "broken";
+  failed_sim.rig = "6-ring";
+  const std::string md =
+      GenerateResultsMarkdown({testing::FakeRecord(), coloured, failed_sim}, FakeOptions());
+  EXPECT_TRUE(Contains(md, "## Colour\n\nThe default point's colour")) << md;
+  EXPECT_TRUE(Contains(md,
+                       "Goals (issue 44): Y PSNR within 1 dB of the baseline's, at most "
+                       "0.2x its colour bytes, colour at most 40% of meshvid's file."));
+  // -0.5 dB, 0.15x the colour bytes, colour 30% of the file: every goal met.
+  EXPECT_TRUE(Contains(md,
+                       "| fake | 6-ring | 32.50 vs 33.00 dB (-0.50) met | 30000 vs 200000 | "
+                       "0.15x met | 30.0% met | 34.00 vs 35.00 dB |"))
+      << md;
+  EXPECT_TRUE(Contains(md, "| fake | 3-arc | n/a (no colour measured) | | | | |"));
+  EXPECT_TRUE(Contains(md, "| broken | 6-ring | simulation failed | | | | |"));
+  EXPECT_LT(md.find("## Divergence"), md.find("## Colour"));
+  EXPECT_LT(md.find("## Colour"), md.find("## fake, 3 views"));
+  // Each point's row ends with its colour bytes and Y PSNR ("-" where not measured).
+  EXPECT_TRUE(Contains(md, "| encode MB | decode MB | colour bytes/frame | Y PSNR |"));
+  EXPECT_TRUE(Contains(md, "| 400 | 60 | 30000 | 32.50 |")) << md;
+  EXPECT_TRUE(Contains(md, "| 250 | 250 | - | - |"));
+}
+
 TEST(BenchReportTest, AnOlderRecordFallsBackToTheMeanMseAndSaysSo) {
   const auto older = ParseBenchRecord(testing::OlderFakeRecordJson(), "fake-3-arc.json");
   ASSERT_TRUE(older.ok()) << older.status().ToString();

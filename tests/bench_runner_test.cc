@@ -20,14 +20,15 @@ namespace meshvid {
 namespace {
 
 /// Appends its arguments to calls.txt beside itself. encode fails for --quality 66. eval gives
-/// two frames of accuracy RMS 0.001, but 0.002 on frame 1 of a .mvid.
+/// two frames of accuracy RMS 0.001, but 0.002 on frame 1 of a .mvid, and colour. A .mvid's
+/// colour is a tenth of its bytes, the baseline's 100 bytes per position bit.
 constexpr const char* kFakeMeshvid = R"SH(#!/bin/sh
 here=$(dirname "$0")
 echo "$*" >> "$here/calls.txt"
 cmd=$1; shift
 if [ "$cmd" = info ]; then
   q=$(cat "$1")
-  echo "{\"levels\": 1, \"frames\": 2, \"bytes\": {\"file\": $((q * 100))}}"
+  echo "{\"levels\": 1, \"frames\": 2, \"bytes\": {\"file\": $((q * 100)), \"colour\": $((q * 10))}}"
   exit 0
 fi
 out=; json=; summary=; quality=0; level=0; test=; bits=; decimate=0
@@ -60,7 +61,8 @@ case $cmd in
         mkdir -p "$out/$dir" && touch "$out/$dir/f0000.ply"
         [ -n "$settings" ] && settings="$settings,"
         settings="$settings{\"position_bits\": $b, \"target_vertices\": $n,
-          \"bytes_total\": $bytes, \"encode_seconds\": 0.5, \"decode_seconds\": 0.1,
+          \"bytes_total\": $bytes, \"colour_bytes_total\": $((b * 100)),
+          \"encode_seconds\": 0.5, \"decode_seconds\": 0.1,
           \"vertices\": $vertices, \"triangles\": 200,
           \"pattern\": \"$out/$dir/f{frame:04}.ply\"}"
       done
@@ -82,7 +84,8 @@ case $cmd in
     echo "{\"mean\": {\"d1_psnr\": $psnr, \"d2_psnr\": \"inf\",
            \"d1_psnr_mean_of_frames\": $((psnr + 2)), \"d2_psnr_mean_of_frames\": 100,
            \"accuracy_rms\": 0.001,
-           \"completeness_rms\": 0.002, \"hausdorff\": 0.01, \"coverage\": 0.9},
+           \"completeness_rms\": 0.002, \"hausdorff\": 0.01, \"coverage\": 0.9,
+           \"y_psnr\": 33.5, \"yuv_psnr\": 35.5},
            \"frames\": [{\"frame\": 0, \"d1_psnr\": $psnr, \"accuracy_rms\": 0.001},
                       {\"frame\": 1, \"d1_psnr\": \"inf\", \"accuracy_rms\": $last}]}" \
       > "$json" ;;
@@ -150,10 +153,16 @@ TEST(BenchRunnerTest, RecordsPointsAndFailuresThenResumesOnlyWhatFailed) {
   EXPECT_EQ(b10->commands[1].rfind("meshvid bench-draco-decode ", 0), 0u) << b10->commands[1];
   EXPECT_DOUBLE_EQ(b10->encode_fps, 2 / 2.0);  // 2 frames / (0.5 + 1.0 + 0.5) s
   EXPECT_TRUE(std::isinf(b10->d2_psnr));
+  // Colour: the eval's Y and YUV PSNR, the summary's colour bytes.
+  EXPECT_DOUBLE_EQ(b10->y_psnr, 33.5);
+  EXPECT_DOUBLE_EQ(b10->yuv_psnr, 35.5);
+  EXPECT_DOUBLE_EQ(b10->colour_bytes_per_frame, 500);  // 1000 bytes, 2 frames
   const BenchPoint* h80 = FindPoint(copy, kMethodMeshvid, "av1", 80, 1);
   ASSERT_NE(h80, nullptr);
   EXPECT_DOUBLE_EQ(h80->bytes_per_frame, 4000);  // 8000-byte file, 2 frames
   EXPECT_DOUBLE_EQ(h80->d1_psnr, 39);
+  EXPECT_DOUBLE_EQ(h80->colour_bytes_per_frame, 400);  // info's 800 colour bytes, 2 frames
+  EXPECT_DOUBLE_EQ(h80->y_psnr, 33.5);
   EXPECT_DOUBLE_EQ(h80->decode_fps, 500);
   EXPECT_GT(h80->encode_peak_mb, 0);
   ASSERT_EQ(h80->commands.size(), 3u);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/coding/base_mesh_encoder.h"
@@ -38,6 +39,38 @@ TEST(BaseMeshCoderTest, RoundTripKeepsTheMeshWithinQuantisation) {
   ASSERT_TRUE(decoded.ok());
   EXPECT_EQ(decoded->positions, encoded->decoded.positions);
   EXPECT_EQ(decoded->triangles, encoded->decoded.triangles);
+}
+
+TEST(BaseMeshCoderTest, VertexColoursRideWithTheirVerticesWhenAskedFor) {
+  TriangleMesh mesh = testing::MakeGridPlane(2.0f, 20, 0.5f);
+  // Each vertex's colour is a function of where it is, so it can be checked after Draco has
+  // reordered the vertices.
+  const auto colour_at = [](const Eigen::Vector3f& p) {
+    return Colour(static_cast<std::uint8_t>(std::lround((p.x() + 1.0f) * 100.0f)),
+                  static_cast<std::uint8_t>(std::lround((p.y() + 1.0f) * 100.0f)), 7);
+  };
+  for (const Eigen::Vector3f& p : mesh.positions) mesh.colours.push_back(colour_at(p));
+  BaseMeshEncoding settings;
+  settings.position_bits = 14;
+  settings.allow_reorder = true;
+  auto plain = EncodeBaseMesh(mesh, settings);
+  settings.code_colours = true;
+  auto coloured = EncodeBaseMesh(mesh, settings);
+  ASSERT_TRUE(plain.ok() && coloured.ok());
+  EXPECT_TRUE(plain->decoded.colours.empty());
+  EXPECT_GT(coloured->bytes.size(), plain->bytes.size());
+  ASSERT_EQ(coloured->decoded.colours.size(), mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    // Positions are quantised at 2 / 2^14, far less than one colour step (0.01).
+    EXPECT_EQ(coloured->decoded.colours[v], colour_at(coloured->decoded.positions[v])) << v;
+  }
+  // The decoder reads them only when asked: a .mvid base mesh is positions and triangles.
+  auto ignored = DecodeBaseMesh(coloured->bytes);
+  ASSERT_TRUE(ignored.ok());
+  EXPECT_TRUE(ignored->colours.empty());
+  auto read = DecodeBaseMesh(coloured->bytes, VertexColours::kRead);
+  ASSERT_TRUE(read.ok());
+  EXPECT_EQ(read->colours, coloured->decoded.colours);
 }
 
 /// Every vertex and triangle of `mesh` is found in `coded` where its maps say.

@@ -72,7 +72,7 @@ Status CheckDracoHeader(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
-StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes) {
+StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes, VertexColours colours) {
   MESHVID_RETURN_IF_ERROR(CheckDracoHeader(bytes));
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -101,6 +101,24 @@ StatusOr<TriangleMesh> DecodeBaseMesh(std::span<const std::uint8_t> bytes) {
                           std::to_string(i.value()));
     }
     mesh.positions[i.value()] = Eigen::Vector3f(xyz[0], xyz[1], xyz[2]);
+  }
+  const draco::PointAttribute* colour =
+      colours == VertexColours::kRead
+          ? draco_mesh->GetNamedAttribute(draco::GeometryAttribute::COLOR)
+          : nullptr;
+  if (colour != nullptr) {
+    if (colour->num_components() != 3 || colour->data_type() != draco::DT_UINT8 ||
+        colour->byte_stride() != 3) {
+      return CorruptError("base mesh: a colour attribute that is not 3 unsigned bytes");
+    }
+    mesh.colours.resize(mesh.positions.size());
+    for (draco::PointIndex i(0); i < draco_mesh->num_points(); ++i) {
+      std::array<std::uint8_t, 3> rgb;
+      if (!colour->GetValue<std::uint8_t, 3>(colour->mapped_index(i), &rgb)) {
+        return CorruptError("base mesh: unreadable colour of point " + std::to_string(i.value()));
+      }
+      mesh.colours[i.value()] = Colour(rgb[0], rgb[1], rgb[2]);
+    }
   }
   mesh.triangles.resize(draco_mesh->num_faces());
   for (draco::FaceIndex f(0); f < draco_mesh->num_faces(); ++f) {

@@ -8,10 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "codec/common/colour_space.h"
 #include "codec/common/progress.h"
+#include "codec/common/subdivision.h"
 #include "codec/dec/base_mesh_decoder.h"
 #include "codec/enc/coding/base_mesh_encoder.h"
 #include "codec/enc/fusion/decimation.h"
+#include "codec/enc/key_groups/colour.h"
+#include "codec/enc/key_groups/detail.h"
 #include "format/output_file.h"
 #include "tools/io/mesh_io.h"
 
@@ -26,7 +30,49 @@ std::string FramePath(const std::string& folder, int frame, const char* extensio
   return folder + name;
 }
 
+/// How far along its normal a fused vertex looks for the views' surfaces: the fusion puts
+/// its vertices within the sensors' noise of the data, well inside this.
+constexpr float kColourShotDistance = 0.01f;
+
+/// True if every view with vertices has a colour per vertex, and one view does.
+bool ViewsHaveColour(const std::vector<TriangleMesh>& views) {
+  const bool all = std::all_of(views.begin(), views.end(), [](const TriangleMesh& view) {
+    return view.empty() || view.colours.size() == view.vertex_count();
+  });
+  return all && std::any_of(views.begin(), views.end(),
+                            [](const TriangleMesh& view) { return !view.colours.empty(); });
+}
+
 }  // namespace
+
+Status ColourVerticesFromViews(std::span<const TriangleMesh> views,
+                               std::span<const ViewCalibration> cameras, TriangleMesh* mesh) {
+  MESHVID_ASSIGN_OR_RETURN(const RegularSubdivision lattice, RegularSubdivision::Create(*mesh, 0));
+  DetailOptions detail;
+  detail.shot.max_distance = kColourShotDistance;
+  std::vector<float> displacements;
+  ColourObservations observations;
+  MESHVID_RETURN_IF_ERROR(MeasureDisplacements(lattice, mesh->positions, views, detail,
+                                               &displacements, cameras, &observations)
+                              .status());
+  std::array<std::vector<float>, 3> fused;
+  FuseColours(observations, EstimateExposureGains(observations), &fused);
+  // The encoder's fill for colour: spread from the seen vertices, the mean where none reaches.
+  const SampleGraph graph = SampleGraph::Build(lattice);
+  const UnreachedFill average_colour{
+      .spread_everywhere = true, .frame_mean = true, .no_values = 128};
+  std::array<std::vector<std::vector<float>>, 3> channels;
+  for (int c = 0; c < 3; ++c) {
+    channels[c].push_back(std::move(fused[c]));
+    std::vector<float> last_measured;
+    FillDisplacementGroup(graph, &last_measured, &channels[c], average_colour);
+  }
+  mesh->colours.resize(mesh->vertex_count());
+  for (std::size_t i = 0; i < mesh->vertex_count(); ++i) {
+    mesh->colours[i] = RoundTo8Bits({channels[0][0][i], channels[1][0][i], channels[2][0][i]});
+  }
+  return Status::Ok();
+}
 
 std::string BaselineSettingFolder(std::size_t target_vertices, int position_bits) {
   const std::string bits = "b" + std::to_string(position_bits);
@@ -81,6 +127,7 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
   encoding.allow_reorder = true;  // edgebreaker: what a per-frame player streams
   MeshWriteOptions write_options;
   write_options.write_normals = false;
+  const std::vector<ViewCalibration> cameras = capture.view_cameras();
 
   for (int frame = 0; frame < summary.frames; ++frame) {
     const std::string where = "baseline frame " + std::to_string(frame);
@@ -93,7 +140,6 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
     StatusOr<TriangleMesh> fused = FuseRangeMeshes(*views, options.fusion);
     if (!fused.ok()) return fused.status().WithContext(where + ": fusion");
     summary.fuse_seconds += SecondsSince(start);
-    views->clear();
 
     start = Clock::now();
     std::vector<TriangleMesh> meshes;
@@ -109,18 +155,38 @@ StatusOr<BaselineSummary> RunBaseline(const CaptureSequence& capture,
       meshes.push_back(std::move(*decimated));
     }
     summary.decimate_seconds += SecondsSince(start);
+    const bool colour = options.colour && ViewsHaveColour(*views);
+    if (colour) {
+      start = Clock::now();
+      for (TriangleMesh& mesh : meshes) {
+        const Status coloured = ColourVerticesFromViews(*views, cameras, &mesh);
+        if (!coloured.ok()) return coloured.WithContext(where + ": colour");
+      }
+      summary.colour_seconds += SecondsSince(start);
+    }
+    views->clear();
 
     for (std::size_t s = 0; s < summary.settings.size(); ++s) {
       BaselineSetting& setting = summary.settings[s];
       encoding.position_bits = setting.position_bits;
       start = Clock::now();
+      encoding.code_colours = colour;
       StatusOr<EncodedBaseMesh> encoded = EncodeBaseMesh(meshes[mesh_of_setting[s]], encoding);
       if (!encoded.ok()) return encoded.status().WithContext(where + ": Draco");
       setting.encode_seconds += SecondsSince(start);
       setting.bytes_total += encoded->bytes.size();
+      if (colour) {
+        // The colour's share: the same mesh coded again without it (not timed).
+        encoding.code_colours = false;
+        StatusOr<EncodedBaseMesh> plain = EncodeBaseMesh(meshes[mesh_of_setting[s]], encoding);
+        if (!plain.ok()) return plain.status().WithContext(where + ": Draco");
+        setting.colour_bytes_total +=
+            encoded->bytes.size() - std::min(encoded->bytes.size(), plain->bytes.size());
+      }
 
       start = Clock::now();
-      StatusOr<TriangleMesh> decoded = DecodeBaseMesh(encoded->bytes);
+      StatusOr<TriangleMesh> decoded =
+          DecodeBaseMesh(encoded->bytes, colour ? VertexColours::kRead : VertexColours::kIgnore);
       if (!decoded.ok()) return decoded.status().WithContext(where + ": Draco decoding");
       setting.decode_seconds += SecondsSince(start);
       setting.vertices += decoded->vertex_count();
@@ -152,11 +218,13 @@ std::string BaselineSummaryToJson(const BaselineSummary& summary) {
   j["load_seconds"] = summary.load_seconds;
   j["fuse_seconds"] = summary.fuse_seconds;
   j["decimate_seconds"] = summary.decimate_seconds;
+  j["colour_seconds"] = summary.colour_seconds;
   j["settings"] = nlohmann::json::array();
   for (const BaselineSetting& s : summary.settings) {
     j["settings"].push_back({{"position_bits", s.position_bits},
                              {"target_vertices", s.target_vertices},
                              {"bytes_total", s.bytes_total},
+                             {"colour_bytes_total", s.colour_bytes_total},
                              {"encode_seconds", s.encode_seconds},
                              {"decode_seconds", s.decode_seconds},
                              {"vertices", s.vertices},
@@ -176,11 +244,13 @@ StatusOr<BaselineSummary> ParseBaselineSummary(const std::string& text, const st
     summary.load_seconds = j.at("load_seconds").get<double>();
     summary.fuse_seconds = j.at("fuse_seconds").get<double>();
     summary.decimate_seconds = j.value("decimate_seconds", 0.0);
+    summary.colour_seconds = j.value("colour_seconds", 0.0);
     for (const nlohmann::json& s : j.at("settings")) {
       BaselineSetting setting;
       setting.position_bits = s.at("position_bits").get<int>();
       setting.target_vertices = s.value("target_vertices", std::size_t{0});
       setting.bytes_total = s.at("bytes_total").get<std::size_t>();
+      setting.colour_bytes_total = s.value("colour_bytes_total", std::size_t{0});
       setting.encode_seconds = s.at("encode_seconds").get<double>();
       setting.decode_seconds = s.at("decode_seconds").get<double>();
       setting.vertices = s.at("vertices").get<double>();
@@ -209,7 +279,7 @@ StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder) {
     const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(text.data()),
                                               text.size());
     const Clock::time_point start = Clock::now();
-    StatusOr<TriangleMesh> mesh = DecodeBaseMesh(bytes);
+    StatusOr<TriangleMesh> mesh = DecodeBaseMesh(bytes, VertexColours::kRead);
     summary.seconds += SecondsSince(start);
     if (!mesh.ok()) return mesh.status().WithContext(path);
     summary.frames += 1;

@@ -8,9 +8,12 @@
 #define MESHVID_TOOLS_BENCH_BASELINE_H_
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "codec/common/camera.h"
+#include "codec/common/mesh.h"
 #include "codec/common/progress.h"
 #include "codec/enc/fusion/surface_fusion.h"
 #include "format/status.h"
@@ -26,6 +29,10 @@ struct BaselineOptions {
   /// each coded at every position_bits; empty: the full fused mesh.
   std::vector<std::size_t> vertex_targets;
   int draco_speed = 0;  ///< Draco encoding speed 0 (smallest) .. 10
+  /// When the capture has colour: every coded mesh carries a colour per vertex
+  /// (ColourVerticesFromViews) as a Draco attribute of 8 bits per channel, lossless, and its
+  /// bytes are counted apart (BaselineSetting::colour_bytes_total).
+  bool colour = true;
   SurfaceFusionOptions fusion;
   /// Decoded frames are written to `out_dir`/<BaselineSettingFolder>/f<frame:04>.ply (binary
   /// PLY) for the
@@ -38,7 +45,10 @@ struct BaselineOptions {
 struct BaselineSetting {
   int position_bits = 0;
   std::size_t target_vertices = 0;  ///< decimated to this many vertices; 0: full fused mesh
-  std::size_t bytes_total = 0;  ///< sum of the Draco bitstreams (no container)
+  std::size_t bytes_total = 0;      ///< sum of the Draco bitstreams (no container), colour included
+  /// What colour adds to bytes_total: each frame coded with and without its colour attribute,
+  /// the difference summed; 0 without colour.
+  std::size_t colour_bytes_total = 0;
   double encode_seconds = 0;    ///< Draco encoding, every frame
   double decode_seconds = 0;    ///< Draco decoding (DecodeBaseMesh), every frame
   double vertices = 0;          ///< mean decoded vertices per frame
@@ -53,8 +63,18 @@ struct BaselineSummary {
   double load_seconds = 0;  ///< reading the views of every frame
   double fuse_seconds = 0;  ///< FuseRangeMeshes, every frame
   double decimate_seconds = 0;  ///< decimation to every vertex target, every frame
+  double colour_seconds = 0;    ///< ColourVerticesFromViews of every coded mesh, every frame
   std::vector<BaselineSetting> settings;
 };
+
+/// Gives `mesh` a colour per vertex from the views' vertex colours, measured as the encoder
+/// measures its samples' colour: each vertex shoots along its normal into every view with
+/// colours (MeasureDisplacements on the mesh as a lattice of level 0), the views are put on
+/// one exposure (EstimateExposureGains) and fused (FuseColours); a vertex no view saw takes
+/// its neighbours' colour, or the mean of the frame. `cameras` as MeasureDisplacements takes
+/// them (may be empty).
+Status ColourVerticesFromViews(std::span<const TriangleMesh> views,
+                               std::span<const ViewCalibration> cameras, TriangleMesh* mesh);
 
 /// The folder of a setting's frames under BaselineOptions::out_dir: "b<bits>" for the full
 /// fused mesh, "v<target>-b<bits>" for a decimated one.
@@ -81,7 +101,8 @@ struct DracoDecodeSummary {
   double vertices = 0;  ///< mean per frame
 };
 
-/// Decodes every f<frame>.drc of `folder` in name order, as a per-frame player would, timing
+/// Decodes every f<frame>.drc of `folder` in name order (colours too, where a stream has
+/// them), as a per-frame player would, timing
 /// the decoding alone. Fails naming the file that does not decode, or if there is none.
 StatusOr<DracoDecodeSummary> DecodeDracoFrames(const std::string& folder);
 

@@ -140,6 +140,7 @@ json EncodeToJson(const BenchEncode& e) {
           {"frames", e.frames},
           {"levels", e.levels},
           {"bytes_total", JsonNumber(e.bytes_total)},
+          {"colour_bytes_total", JsonNumber(e.colour_bytes_total)},
           {"seconds", JsonNumber(e.seconds)},
           {"encode_fps", JsonNumber(e.encode_fps)},
           {"peak_rss_mb", JsonNumber(e.peak_rss_mb)},
@@ -159,6 +160,7 @@ BenchEncode EncodeFromJson(const json& j) {
   e.frames = j.value("frames", 0);
   e.levels = j.value("levels", 0);
   e.bytes_total = JsonNumber(j, "bytes_total");
+  e.colour_bytes_total = JsonNumber(j, "colour_bytes_total");
   e.seconds = JsonNumber(j, "seconds");
   e.encode_fps = JsonNumber(j, "encode_fps");
   e.peak_rss_mb = JsonNumber(j, "peak_rss_mb");
@@ -186,6 +188,9 @@ json PointToJson(const BenchPoint& p) {
           {"completeness_rms", JsonNumber(p.completeness_rms)},
           {"hausdorff", JsonNumber(p.hausdorff)},
           {"coverage", JsonNumber(p.coverage)},
+          {"y_psnr", JsonNumber(p.y_psnr)},
+          {"yuv_psnr", JsonNumber(p.yuv_psnr)},
+          {"colour_bytes_per_frame", JsonNumber(p.colour_bytes_per_frame)},
           {"encode_fps", JsonNumber(p.encode_fps)},
           {"decode_fps", JsonNumber(p.decode_fps)},
           {"encode_peak_mb", JsonNumber(p.encode_peak_mb)},
@@ -215,6 +220,9 @@ BenchPoint PointFromJson(const json& j) {
   p.completeness_rms = JsonNumber(j, "completeness_rms");
   p.hausdorff = JsonNumber(j, "hausdorff");
   p.coverage = JsonNumber(j, "coverage");
+  p.y_psnr = JsonNumber(j, "y_psnr");
+  p.yuv_psnr = JsonNumber(j, "yuv_psnr");
+  p.colour_bytes_per_frame = JsonNumber(j, "colour_bytes_per_frame");
   p.encode_fps = JsonNumber(j, "encode_fps");
   p.decode_fps = JsonNumber(j, "decode_fps");
   p.encode_peak_mb = JsonNumber(j, "encode_peak_mb");

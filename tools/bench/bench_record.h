@@ -41,6 +41,13 @@ inline constexpr double kDivergenceRatioLimit = 1.25;
 /// ...and the goal is that at least this share of the frames is within.
 inline constexpr double kDivergenceShareGoal = 0.95;
 
+/// Colour goals (issue 44): the default point's Y PSNR at most this many dB below the
+/// baseline best's, with at most kColourBytesRatioGoal times its colour bytes, and colour at
+/// most kColourShareGoal of meshvid's bytes.
+inline constexpr double kColourPsnrGapGoal = 1.0;
+inline constexpr double kColourBytesRatioGoal = 0.2;  ///< see kColourPsnrGapGoal
+inline constexpr double kColourShareGoal = 0.4;       ///< see kColourPsnrGapGoal
+
 /// What one child process step cost.
 struct StepCost {
   double wall_seconds = 0;
@@ -61,7 +68,10 @@ struct BenchEncode {
   int frames = 0;
   int levels = 0;  ///< finest level stored (baseline: 0)
   double bytes_total = 0;
-  double seconds = 0;     ///< encode wall time (baseline: load + fusion + Draco coding)
+  /// What colour takes of bytes_total: the .mvid's colour stream, the baseline's colour
+  /// attributes; 0 without colour, NaN in records from before it was measured.
+  double colour_bytes_total = 0;
+  double seconds = 0;     ///< encode wall time (baseline: load, fusion, colour, Draco coding)
   double encode_fps = 0;  ///< frames / seconds
   double peak_rss_mb = 0;
   double decode_fps = 0;  ///< baseline only: Draco decoding, frames / second
@@ -92,6 +102,12 @@ struct BenchPoint {
   double completeness_rms = 0;
   double hausdorff = 0;
   double coverage = 0;  ///< share of ground-truth samples within tolerance, 0..1
+  /// Colour (meshvid eval's mean.y_psnr and mean.yuv_psnr, dB) and what colour takes of
+  /// bytes_per_frame; NaN where the decoded frames or the ground truth have no colour, or in
+  /// records from before colour was measured.
+  double y_psnr = std::numeric_limits<double>::quiet_NaN();
+  double yuv_psnr = std::numeric_limits<double>::quiet_NaN();
+  double colour_bytes_per_frame = std::numeric_limits<double>::quiet_NaN();
   double encode_fps = 0;
   double decode_fps = 0;
   double encode_peak_mb = 0;

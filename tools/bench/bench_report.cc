@@ -157,6 +157,62 @@ std::string DivergenceSection(const std::vector<BenchRecord>& records) {
   return md;
 }
 
+/// The colour row of one record: the default point's colour against the baseline best's (the
+/// same setting the divergence check takes; its colour is 8 bits a channel at every setting).
+std::string ColourRow(const BenchRecord& record) {
+  std::string row = "| " + record.sequence + " | " + record.rig + " | ";
+  const BenchPoint* meshvid = FindDefaultPoint(record);
+  const BenchPoint* baseline = FindBaselineBest(record);
+  const auto has_colour = [](const BenchPoint* p) {
+    return p != nullptr && p->ok && !std::isnan(p->y_psnr) &&
+           !std::isnan(p->colour_bytes_per_frame);
+  };
+  if (!has_colour(meshvid) || !has_colour(baseline)) {
+    return row + "n/a (no colour measured) | | | | |\n";
+  }
+  const double psnr_gap = meshvid->y_psnr - baseline->y_psnr;
+  const double bytes_ratio =
+      baseline->colour_bytes_per_frame > 0
+          ? meshvid->colour_bytes_per_frame / baseline->colour_bytes_per_frame
+          : std::numeric_limits<double>::quiet_NaN();
+  const double share = meshvid->bytes_per_frame > 0
+                           ? meshvid->colour_bytes_per_frame / meshvid->bytes_per_frame
+                           : std::numeric_limits<double>::quiet_NaN();
+  row += Fmt("%.2f", meshvid->y_psnr) + " vs " + Fmt("%.2f", baseline->y_psnr) + " dB (" +
+         Fmt("%+.2f", psnr_gap) + ")" + MetMark(psnr_gap >= -kColourPsnrGapGoal) + " | ";
+  row += Fmt("%.0f", meshvid->colour_bytes_per_frame) + " vs " +
+         Fmt("%.0f", baseline->colour_bytes_per_frame) + " | ";
+  row += Fmt("%.3g", bytes_ratio) + "x" + MetMark(bytes_ratio <= kColourBytesRatioGoal) + " | ";
+  row += Fmt("%.1f%%", 100 * share) + MetMark(share <= kColourShareGoal) + " | ";
+  row += Fmt("%.2f", meshvid->yuv_psnr) + " vs " + Fmt("%.2f", baseline->yuv_psnr) + " dB |\n";
+  return row;
+}
+
+/// The "Colour" section: one row per record.
+std::string ColourSection(const std::vector<BenchRecord>& records) {
+  std::string md =
+      "## Colour\n\n"
+      "The default point's colour (`meshvid eval`: PSNR of 8-bit BT.709 Y against the ground "
+      "truth's colour at the nearest surface point, eval's mean row) and colour stream "
+      "against the baseline best's (the divergence check's setting: the fused mesh's "
+      "per-vertex colour as a Draco attribute of 8 bits a channel; its colour bytes are each "
+      "frame coded with and without the attribute, the difference). Goals (issue 44): Y PSNR "
+      "within " +
+      Fmt("%.3g", kColourPsnrGapGoal) + " dB of the baseline's, at most " +
+      Fmt("%.3g", kColourBytesRatioGoal) + "x its colour bytes, colour at most " +
+      Fmt("%.0f%%", 100 * kColourShareGoal) + " of meshvid's file.\n\n";
+  md +=
+      "| sequence | rig | Y PSNR: default vs baseline best | colour bytes/frame: default vs "
+      "baseline best | colour bytes ratio | colour share of the file | YUV PSNR (6:1:1): default "
+      "vs baseline best |\n";
+  md += "|---|---|---|---|---|---|---|\n";
+  for (const BenchRecord& r : records) {
+    md += r.simulate_ok ? ColourRow(r)
+                        : "| " + r.sequence + " | " + r.rig + " | simulation failed | | | | |\n";
+  }
+  return md + "\n";
+}
+
 std::string PointRow(const BenchPoint& p) {
   const bool baseline = p.method != kMethodMeshvid;
   std::string setting = std::to_string(p.quality);
@@ -167,14 +223,17 @@ std::string PointRow(const BenchPoint& p) {
   row += " | ";
   row += baseline ? std::string("-") : std::to_string(p.level);
   row += " | ";
-  if (!p.ok) return row + "failed | | | | | | | | | | | | |\n";
+  if (!p.ok) return row + "failed | | | | | | | | | | | | | | |\n";
   row += Fmt("%.0f", p.bytes_per_frame) + " | " + Fmt("%.3g", p.mbit_per_s) + " | " +
          Fmt("%.2f", p.d1_psnr_mean_of_frames) + " | " + Fmt("%.2f", p.d1_psnr) + " | " +
          Fmt("%.2f", p.d2_psnr_mean_of_frames) + " | " + Fmt("%.2f", p.d2_psnr) + " | " +
          Fmt("%.3g", 1e3 * p.accuracy_rms) + " | " + Fmt("%.3g", 1e3 * p.completeness_rms) + " | " +
          Fmt("%.1f%%", 100 * p.coverage) + " | " + Fmt("%.3g", p.encode_fps) + " | " +
          Fmt("%.3g", p.decode_fps) + " | " + Fmt("%.0f", p.encode_peak_mb) + " | " +
-         Fmt("%.0f", p.decode_peak_mb) + " |\n";
+         Fmt("%.0f", p.decode_peak_mb) + " | " +
+         (std::isnan(p.colour_bytes_per_frame) ? std::string("-")
+                                               : Fmt("%.0f", p.colour_bytes_per_frame)) +
+         " | " + (std::isnan(p.y_psnr) ? std::string("-") : Fmt("%.2f", p.y_psnr)) + " |\n";
   return row;
 }
 
@@ -231,8 +290,9 @@ std::string RecordSection(const BenchRecord& record, const ReportOptions& option
   md +=
       "| method | codec | setting | level | bytes/frame | Mbit/s | D1 PSNR, mean of frames | "
       "D1 PSNR, mean MSE | D2 PSNR, mean of frames | D2 PSNR, mean MSE | accuracy RMS (1e-3) | "
-      "completeness RMS (1e-3) | coverage | encode fps | decode fps | encode MB | decode MB |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "completeness RMS (1e-3) | coverage | encode fps | decode fps | encode MB | decode MB | "
+      "colour bytes/frame | Y PSNR |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<BenchPoint> points = record.points;
   std::stable_sort(points.begin(), points.end(), [](const BenchPoint& a, const BenchPoint& b) {
     if (a.method != b.method) {
@@ -377,7 +437,7 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "(mm for metric data); coverage is the share of ground-truth samples within 0.25% of p "
       "of the test surface.\n"
       "- Speed: encode fps = frames / wall time of `meshvid encode` (process start and "
-      "reading the capture included); the baseline's = frames / (reading + fusion + Draco "
+      "reading the capture included); the baseline's = frames / (reading + fusion + colour + Draco "
       "coding). Decode fps = frames / the decoder's own time for every frame, one thread "
       "(meshvid: `meshvid decode --no-write`, `MvidDecoder::DecodeFrame` to a full mesh, reading "
       "the file included; baseline: `meshvid bench-draco-decode`, Draco decoding of each "
@@ -413,6 +473,7 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
   }
   md += "\n";
   md += DivergenceSection(records);
+  md += ColourSection(records);
   for (const BenchRecord& r : records) md += RecordSection(r, options);
   return md;
 }

@@ -373,7 +373,10 @@ std::string DescribePoint(const BenchPoint& p) {
   return text +
          Format(": %.2f kB/frame, %.3g Mbit/s, D1 %.2f dB (mean of frames; %.2f of the mean MSE)",
                 p.bytes_per_frame / 1e3, p.mbit_per_s, p.d1_psnr_mean_of_frames, p.d1_psnr) +
-         Format(", coverage %.1f%%, decode %.0f frames/s", 100 * p.coverage, p.decode_fps);
+         Format(", coverage %.1f%%, decode %.0f frames/s", 100 * p.coverage, p.decode_fps) +
+         (std::isnan(p.y_psnr) ? std::string()
+                               : Format(", colour %.2f kB/frame, Y PSNR %.2f dB",
+                                        p.colour_bytes_per_frame / 1e3, p.y_psnr));
 }
 
 Status Runner::Baseline(BenchRecord& record) {
@@ -462,10 +465,11 @@ Status Runner::DracoPoints(BenchRecord& record, const std::string& method,
     encode.file = s.pattern;
     encode.frames = summary.frames;
     encode.bytes_total = static_cast<double>(s.bytes_total);
-    // Every setting's frames were fused (and decimated) once for all of them: each counts
+    encode.colour_bytes_total = static_cast<double>(s.colour_bytes_total);
+    // Every setting's frames were fused (decimated, coloured) once for all of them: each counts
     // the whole, as a player's encoder running that setting alone would spend it.
-    encode.seconds =
-        summary.load_seconds + summary.fuse_seconds + summary.decimate_seconds + s.encode_seconds;
+    encode.seconds = summary.load_seconds + summary.fuse_seconds + summary.decimate_seconds +
+                     summary.colour_seconds + s.encode_seconds;
     encode.encode_fps = encode.seconds > 0 ? frames / encode.seconds : 0;
     encode.decode_fps = s.decode_seconds > 0 ? frames / s.decode_seconds : 0;
     encode.peak_rss_mb = cost.peak_rss_mb;
@@ -485,6 +489,7 @@ Status Runner::DracoPoints(BenchRecord& record, const std::string& method,
     point.level = -1;
     point.frames = summary.frames;
     point.bytes_per_frame = encode.bytes_total / frames;
+    point.colour_bytes_per_frame = encode.colour_bytes_total / frames;
     point.mbit_per_s = point.bytes_per_frame * 8 * record.frame_rate / 1e6;
     point.encode_fps = encode.encode_fps;
     point.encode_peak_mb = cost.peak_rss_mb;
@@ -642,6 +647,9 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
         encode.levels = j->at("levels").get<int>();
         encode.frames = j->at("frames").get<int>();
         encode.bytes_total = ChildFigure(j->at("bytes"), "file");
+        // A file without colour has no "colour" count: none of its bytes are colour.
+        encode.colour_bytes_total =
+            j->at("bytes").contains("colour") ? ChildFigure(j->at("bytes"), "colour") : 0.0;
         encode.encode_fps = encode.seconds > 0 ? encode.frames / encode.seconds : 0;
       } else {
         encode.ok = false;
@@ -673,6 +681,7 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
     point.frames = encode.frames;
     const int frames = std::max(1, encode.frames);
     point.bytes_per_frame = encode.bytes_total / frames;
+    point.colour_bytes_per_frame = encode.colour_bytes_total / frames;
     point.mbit_per_s = point.bytes_per_frame * 8 * record.frame_rate / 1e6;
     point.encode_fps = encode.encode_fps;
     point.encode_peak_mb = encode.peak_rss_mb;

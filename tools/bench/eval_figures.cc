@@ -42,6 +42,8 @@ StatusOr<EvalFigures> ParseEvalFigures(const std::string& text, const std::strin
     f.completeness_rms = JsonNumber(mean, "completeness_rms");
     f.hausdorff = JsonNumber(mean, "hausdorff");
     f.coverage = JsonNumber(mean, "coverage");
+    f.y_psnr = JsonNumber(mean, "y_psnr");  // absent (NaN) without colour
+    f.yuv_psnr = JsonNumber(mean, "yuv_psnr");
     const auto frames = j.find("frames");
     if (frames != j.end() && frames->is_array()) {
       f.frames = static_cast<int>(frames->size());
@@ -68,6 +70,8 @@ void SetEvalFigures(const EvalFigures& f, BenchPoint* point) {
   point->completeness_rms = f.completeness_rms;
   point->hausdorff = f.hausdorff;
   point->coverage = f.coverage;
+  point->y_psnr = f.y_psnr;
+  point->yuv_psnr = f.yuv_psnr;
   if (f.frames > 0) point->frames = f.frames;
   point->frame_accuracy_rms = f.frame_accuracy_rms;
   point->frame_d1_psnr = f.frame_d1_psnr;

@@ -24,6 +24,8 @@ struct EvalFigures {
   double completeness_rms = std::numeric_limits<double>::quiet_NaN();
   double hausdorff = std::numeric_limits<double>::quiet_NaN();
   double coverage = std::numeric_limits<double>::quiet_NaN();
+  double y_psnr = std::numeric_limits<double>::quiet_NaN();    ///< NaN: no colour evaluated
+  double yuv_psnr = std::numeric_limits<double>::quiet_NaN();  ///< as y_psnr
   int frames = 0;  ///< entries of "frames"
   /// Per frame, in the file's order, rounded by RoundFrameFigure; NaN where a frame has none.
   std::vector<double> frame_accuracy_rms;
@@ -34,7 +36,8 @@ struct EvalFigures {
 /// when it is not a JSON object with a "mean" object.
 StatusOr<EvalFigures> ParseEvalFigures(const std::string& text, const std::string& name);
 
-/// Copies every figure of `figures` into `point` (means, frame count, per-frame arrays).
+/// Copies every figure of `figures` into `point` (means, colour, frame count, per-frame
+/// arrays).
 void SetEvalFigures(const EvalFigures& figures, BenchPoint* point);
 
 /// The file name stem of a point's work files in its record's work folder, as the runner

@@ -236,6 +236,7 @@ struct BaselineArguments {
   std::string decimate;
   std::string summary_json;
   int draco_speed = 0;
+  bool no_colour = false;
   bool quiet = false;
 };
 
@@ -257,6 +258,7 @@ int RunBaselineCommand(const BaselineArguments& args) {
     options.vertex_targets.assign(targets->begin(), targets->end());
   }
   options.draco_speed = args.draco_speed;
+  options.colour = !args.no_colour;
   options.out_dir = args.out;
   StatusOr<std::unique_ptr<CaptureSequence>> capture = CaptureSequence::Open(args.capture);
   if (!capture.ok()) return ReportError(capture.status());
@@ -270,17 +272,20 @@ int RunBaselineCommand(const BaselineArguments& args) {
   }
   if (!args.quiet) {
     std::fprintf(
-        stderr, "Baseline on %d frames: reading %.2f s, fusion %.2f s, decimation %.2f s\n",
-        summary->frames, summary->load_seconds, summary->fuse_seconds, summary->decimate_seconds);
+        stderr,
+        "Baseline on %d frames: reading %.2f s, fusion %.2f s, decimation %.2f s, colour %.2f s\n",
+        summary->frames, summary->load_seconds, summary->fuse_seconds, summary->decimate_seconds,
+        summary->colour_seconds);
     for (const BaselineSetting& s : summary->settings) {
       const std::string mesh = s.target_vertices == 0
                                    ? std::string("full")
                                    : "to " + std::to_string(s.target_vertices) + " vertices";
       std::fprintf(stderr,
-                   "  %s, %2d bits: %.0f bytes/frame, Draco encode %.3f s, decode %.3f s, %.0f "
-                   "vertices/frame -> %s\n",
+                   "  %s, %2d bits: %.0f bytes/frame (colour %.0f), Draco encode %.3f s, decode "
+                   "%.3f s, %.0f vertices/frame -> %s\n",
                    mesh.c_str(), s.position_bits,
                    summary->frames ? double(s.bytes_total) / summary->frames : 0.0,
+                   summary->frames ? double(s.colour_bytes_total) / summary->frames : 0.0,
                    s.encode_seconds, s.decode_seconds, s.vertices, s.pattern.c_str());
     }
   }
@@ -321,9 +326,11 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       "ground-truth sequence with 3 views on an arc and 6 on a ring: meshvid encode at\n"
       "several qualities per codec (HEVC, AV1; FFV1 lossless), decoded and evaluated at every\n"
       "level; the baseline at several Draco quantisations, in full and decimated to 1/2, 1 and\n"
-      "2 times meshvid's decoded vertex count, evaluated the same way. Records bytes/frame,\n"
-      "Mbit/s, D1/D2 PSNR, accuracy, completeness, coverage, encode/decode frames/s and peak\n"
-      "memory per point in OUT/<sequence>-<rig>.json, BD-rates (D1) against each baseline\n"
+      "2 times meshvid's decoded vertex count, evaluated the same way (with the views' colour\n"
+      "per vertex where the capture has colour). Records bytes/frame, Mbit/s, D1/D2 PSNR,\n"
+      "accuracy, completeness, coverage, colour (Y PSNR, colour bytes), encode/decode frames/s\n"
+      "and peak memory per point in OUT/<sequence>-<rig>.json, BD-rates (D1) against each "
+      "baseline\n"
       "curve, RD plots (gnuplot) and RESULTS.md beside OUT. Every step is a child\n"
       "process of this program; a failing step is recorded and the run goes on; running the\n"
       "same command again resumes (finished steps are kept). A full run takes hours;\n"
@@ -388,7 +395,9 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       "The per-frame baseline step of meshvid bench: fuse each frame's views, code the fused\n"
       "mesh (or, with --decimate, the fused mesh decimated to each vertex count) with Draco\n"
       "(edgebreaker) at each --bits, decode it and write the decoded frames to\n"
-      "OUT/b<bits>/f<frame:04>.ply (decimated: OUT/v<vertices>-b<bits>/...).");
+      "OUT/b<bits>/f<frame:04>.ply (decimated: OUT/v<vertices>-b<bits>/...). A capture with\n"
+      "colour gives every coded mesh the views' colour per vertex, coded by Draco as 8 bits\n"
+      "per channel, its bytes counted apart.");
   base->group("");  // hidden: meshvid bench runs it
   base->add_option("CAPTURE", baseline->capture, "The capture (manifest.json, pattern, .conf)")
       ->required();
@@ -404,6 +413,8 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   base->add_option("--json,--summary-json", baseline->summary_json,
                    JsonOptionHelp("Write the measurements"))
       ->type_name("FILE|-");
+  base->add_flag("--no-colour", baseline->no_colour,
+                 "Code positions and triangles only, even when the capture has colour");
   base->add_flag("-q,--quiet", baseline->quiet, "No progress bar and no summary");
   base->callback([baseline, exit_code] { *exit_code = RunBaselineCommand(*baseline); });
 

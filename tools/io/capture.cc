@@ -306,6 +306,17 @@ ViewCalibration CaptureSequence::view_camera(int view) const {
   return camera;
 }
 
+std::vector<ViewCalibration> CaptureSequence::view_cameras() const {
+  std::vector<ViewCalibration> cameras;
+  bool any_usable = false;
+  for (int view = 0; view < view_count(); ++view) {
+    cameras.push_back(view_camera(view));
+    any_usable |= cameras.back().CanProject();
+  }
+  if (!any_usable) cameras.clear();
+  return cameras;
+}
+
 StatusOr<std::vector<TriangleMesh>> CaptureSequence::LoadFrame(int frame) const {
   std::vector<TriangleMesh> meshes;
   meshes.reserve(view_count());

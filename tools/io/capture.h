@@ -76,6 +76,9 @@ class CaptureSequence {
   /// View `view`'s calibration with the camera posed in the world its loaded meshes are in
   /// (a Stanford .conf line's pose applied after the extrinsics, as LoadView does).
   ViewCalibration view_camera(int view) const;
+  /// Every view's view_camera, in view order; empty when none of them can project (a
+  /// capture without calibration).
+  std::vector<ViewCalibration> view_cameras() const;
 
  private:
   friend class CaptureSequenceBuilder;

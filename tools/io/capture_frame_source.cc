@@ -19,14 +19,7 @@ StatusOr<std::vector<TriangleMesh>> CaptureFrameSource::LoadFrame(int frame) con
 }
 
 std::vector<ViewCalibration> CaptureFrameSource::view_cameras() const {
-  std::vector<ViewCalibration> cameras;
-  bool any_usable = false;
-  for (int view = 0; view < capture_->view_count(); ++view) {
-    cameras.push_back(capture_->view_camera(view));
-    any_usable |= cameras.back().CanProject();
-  }
-  if (!any_usable) cameras.clear();
-  return cameras;
+  return capture_->view_cameras();
 }
 
 }  // namespace meshvid

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <span>
 #include <string>
 
 #include <draco/compression/config/compression_shared.h>
@@ -17,20 +18,32 @@ namespace meshvid {
 
 namespace {
 
+/// Adds one attribute of 3 components per vertex (identity mapping), vertex i's taken from
+/// values[i] (a 3-vector of the type `data_type` names).
+template <typename Vector3>
+void AddVertexAttribute(draco::GeometryAttribute::Type type, draco::DataType data_type,
+                        bool normalized, std::span<const Vector3> values, draco::Mesh* draco_mesh) {
+  using Scalar = typename Vector3::Scalar;
+  draco::GeometryAttribute attribute;
+  attribute.Init(type, nullptr, 3, data_type, normalized, sizeof(Scalar) * 3, 0);
+  const int id = draco_mesh->AddAttribute(attribute, /*identity_mapping=*/true, values.size());
+  draco::PointAttribute* added = draco_mesh->attribute(id);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    added->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)),
+                             values[i].data());
+  }
+}
+
 /// Codes `mesh` with one Draco method and decodes the result.
 StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEncoding& settings,
                                      bool edgebreaker) {
   draco::Mesh draco_mesh;
   draco_mesh.set_num_points(static_cast<std::uint32_t>(mesh.vertex_count()));
-  draco::GeometryAttribute attribute;
-  attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false,
-                 sizeof(float) * 3, 0);
-  const int position_id =
-      draco_mesh.AddAttribute(attribute, /*identity_mapping=*/true, mesh.vertex_count());
-  draco::PointAttribute* position = draco_mesh.attribute(position_id);
-  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    position->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)),
-                                mesh.positions[i].data());
+  AddVertexAttribute(draco::GeometryAttribute::POSITION, draco::DT_FLOAT32, /*normalized=*/false,
+                     std::span<const Eigen::Vector3f>(mesh.positions), &draco_mesh);
+  if (settings.code_colours && !mesh.colours.empty()) {
+    AddVertexAttribute(draco::GeometryAttribute::COLOR, draco::DT_UINT8, /*normalized=*/true,
+                       std::span<const Colour>(mesh.colours), &draco_mesh);
   }
   draco_mesh.SetNumFaces(mesh.triangle_count());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
@@ -52,7 +65,9 @@ StatusOr<EncodedBaseMesh> EncodeWith(const TriangleMesh& mesh, const BaseMeshEnc
   EncodedBaseMesh result;
   result.position_bits = settings.position_bits;
   result.bytes.assign(buffer.data(), buffer.data() + buffer.size());
-  MESHVID_ASSIGN_OR_RETURN(result.decoded, DecodeBaseMesh(result.bytes));
+  MESHVID_ASSIGN_OR_RETURN(
+      result.decoded, DecodeBaseMesh(result.bytes, settings.code_colours ? VertexColours::kRead
+                                                                         : VertexColours::kIgnore));
   return result;
 }
 

@@ -23,6 +23,10 @@ struct BaseMeshEncoding {
   /// Edgebreaker whatever order it gives back: for meshes nothing else indexes by vertex (a
   /// per-frame stream, as the benchmark's baseline codes).
   bool allow_reorder = false;
+  /// Codes the mesh's vertex colours too, when it has one per vertex, as Draco's COLOR
+  /// attribute (3 unsigned bytes, lossless), and decodes them back: for per-frame streams (the
+  /// benchmark's baseline). A `.mvid` base mesh carries positions only.
+  bool code_colours = false;
 };
 
 /// A coded base mesh and the mesh a decoder will reconstruct from it (Draco may reorder

@@ -68,8 +68,10 @@ struct BaselineSummary {
 };
 
 /// Gives `mesh` a colour per vertex from the views' vertex colours, measured as the encoder
-/// measures its samples' colour: each vertex shoots along its normal into every view with
-/// colours (MeasureDisplacements on the mesh as a lattice of level 0), the views are put on
+/// measures its samples' colour but with a fixed shot distance of 1 cm (the encoder scales
+/// its lengths to the scene; the bench's captures are in metres): each vertex shoots along
+/// its normal into every view with colours (MeasureDisplacements on the mesh as a lattice of
+/// level 0), the views are put on
 /// one exposure (EstimateExposureGains) and fused (FuseColours); a vertex no view saw takes
 /// its neighbours' colour, or the mean of the frame. `cameras` as MeasureDisplacements takes
 /// them (may be empty).

@@ -102,9 +102,9 @@ struct BenchPoint {
   double completeness_rms = 0;
   double hausdorff = 0;
   double coverage = 0;  ///< share of ground-truth samples within tolerance, 0..1
-  /// Colour (meshvid eval's mean.y_psnr and mean.yuv_psnr, dB) and what colour takes of
-  /// bytes_per_frame; NaN where the decoded frames or the ground truth have no colour, or in
-  /// records from before colour was measured.
+  /// Colour (meshvid eval's mean.y_psnr and mean.yuv_psnr, dB; NaN where the decoded frames
+  /// or the ground truth have no colour) and what colour takes of bytes_per_frame (0 without
+  /// colour); all NaN in records from before colour was measured.
   double y_psnr = std::numeric_limits<double>::quiet_NaN();
   double yuv_psnr = std::numeric_limits<double>::quiet_NaN();
   double colour_bytes_per_frame = std::numeric_limits<double>::quiet_NaN();

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "tests/test_util.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/child_process.h"
@@ -293,6 +295,43 @@ TEST(BenchRunnerTest, PointsOfAnOlderRecordAreMeasuredAgain) {
     logged |= line.find("8 points were recorded without the mean of per-frame PSNRs") !=
               std::string::npos;
   EXPECT_TRUE(logged);
+}
+
+TEST(BenchRunnerTest, PointsRecordedBeforeColourAreMeasuredAgainWithIt) {
+  FakeBench bench;
+  bench.options.keep_work = true;  // so the baseline's summary could be reused
+  ASSERT_TRUE(RunBench(bench.options, bench.events).ok());
+  // The record and the baseline's summary as a bench before colour wrote them.
+  const std::string path = bench.options.results_dir + "/fake-3-arc.json";
+  auto older = ReadBenchRecord(path);
+  ASSERT_TRUE(older.ok());
+  for (BenchPoint& p : older->points) {
+    p.colour_bytes_per_frame = p.y_psnr = p.yuv_psnr = std::nan("");
+  }
+  for (BenchEncode& e : older->encodes) e.colour_bytes_total = std::nan("");
+  ASSERT_TRUE(WriteBenchRecord(*older, path).ok());
+  const std::string summary_path = bench.options.work_dir + "/fake-3-arc/baseline/summary.json";
+  nlohmann::json summary = nlohmann::json::parse(testing::ReadFile(summary_path));
+  for (nlohmann::json& setting : summary.at("settings")) setting.erase("colour_bytes_total");
+  testing::WriteFile(summary_path, summary.dump());
+
+  const std::size_t calls = bench.Calls().size();
+  auto records = RunBench(bench.options, bench.events);
+  ASSERT_TRUE(records.ok()) << records.status().ToString();
+  int baselines = 0, infos = 0, encodes = 0;
+  const std::vector<std::string> after = bench.Calls();
+  for (std::size_t i = calls; i < after.size(); ++i) {
+    baselines += after[i].rfind("bench-baseline ", 0) == 0;
+    infos += after[i].rfind("info ", 0) == 0;
+    encodes += after[i].rfind("encode ", 0) == 0;
+  }
+  EXPECT_EQ(baselines, 1);  // the summary without colour bytes is not reused
+  EXPECT_EQ(infos, 3);      // the kept files (AV1 q40 and q80, FFV1) are described again...
+  EXPECT_EQ(encodes, 1);    // ...not encoded again (q66 fails every time)
+  for (const BenchPoint& p : (*records)[0].points) {
+    EXPECT_FALSE(std::isnan(p.colour_bytes_per_frame)) << p.codec << p.quality << p.level;
+    EXPECT_DOUBLE_EQ(p.y_psnr, 33.5) << p.codec << p.quality << p.level;
+  }
 }
 
 TEST(BenchRunnerTest, AFileEncodedAgainIsEvaluatedAgain) {

@@ -49,6 +49,7 @@ struct BaselineSetting {
   /// What colour adds to bytes_total: each frame coded with and without its colour attribute,
   /// the difference summed; 0 without colour.
   std::size_t colour_bytes_total = 0;
+  double colour_seconds = 0;    ///< ColourVerticesFromViews of this setting's mesh, every frame
   double encode_seconds = 0;    ///< Draco encoding, every frame
   double decode_seconds = 0;    ///< Draco decoding (DecodeBaseMesh), every frame
   double vertices = 0;          ///< mean decoded vertices per frame
@@ -68,10 +69,9 @@ struct BaselineSummary {
 };
 
 /// Gives `mesh` a colour per vertex from the views' vertex colours, measured as the encoder
-/// measures its samples' colour but with a fixed shot distance of 1 cm (the encoder scales
-/// its lengths to the scene; the bench's captures are in metres): each vertex shoots along
-/// its normal into every view with colours (MeasureDisplacements on the mesh as a lattice of
-/// level 0), the views are put on
+/// measures its samples' colour, its lengths scaled to the mesh's size as the encoder's are
+/// to the scene's: each vertex shoots along its normal into every view with colours
+/// (MeasureDisplacements on the mesh as a lattice of level 0), the views are put on
 /// one exposure (EstimateExposureGains) and fused (FuseColours); a vertex no view saw takes
 /// its neighbours' colour, or the mean of the frame. `cameras` as MeasureDisplacements takes
 /// them (may be empty).

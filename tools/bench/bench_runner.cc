@@ -42,10 +42,12 @@ StatusOr<json> ReadJsonFile(const std::string& path) {
 }
 
 /// A point a resumed run keeps: measured, with the figures this version records (a point of an
-/// older record lacks the mean of per-frame PSNRs or the per-frame figures, so it is measured
-/// again, unless the figures were filled from its eval JSON: BackfillFrameFigures).
+/// older record lacks the mean of per-frame PSNRs, the per-frame figures or its colour bytes,
+/// so it is measured again, unless the per-frame figures were filled from its eval JSON:
+/// BackfillFrameFigures).
 bool Finished(const BenchPoint* point) {
-  return point != nullptr && point->ok && HasMeanOfFramesPsnr(*point) && HasFrameFigures(*point);
+  return point != nullptr && point->ok && HasMeanOfFramesPsnr(*point) && HasFrameFigures(*point) &&
+         !std::isnan(point->colour_bytes_per_frame);
 }
 
 /// Arguments joined by single spaces ("" for none).
@@ -188,6 +190,9 @@ class Runner {
                      const std::vector<std::string>& codecs, const BaselineSummary& summary,
                      const std::string& out, const std::string& command, const StepCost& cost);
   Status Meshvid(BenchRecord& record, const std::string& codec, int quality);
+  /// Fills `encode`'s levels, frames, bytes and colour bytes from `meshvid info` of its file;
+  /// on failure, sets encode->ok false with the reason.
+  void ReadFileInfo(const std::string& stem, BenchEncode* encode);
   /// Runs `meshvid eval` of `test` (at `level` if >= 0) into `point`; false if it failed.
   bool Evaluate(const BenchRecord& record, const std::string& test, int level,
                 const std::string& stem, BenchPoint* point);
@@ -466,10 +471,11 @@ Status Runner::DracoPoints(BenchRecord& record, const std::string& method,
     encode.frames = summary.frames;
     encode.bytes_total = static_cast<double>(s.bytes_total);
     encode.colour_bytes_total = static_cast<double>(s.colour_bytes_total);
-    // Every setting's frames were fused (decimated, coloured) once for all of them: each counts
-    // the whole, as a player's encoder running that setting alone would spend it.
+    // Every setting's frames were fused (and decimated) once for all of them: each counts the
+    // whole, as a player's encoder running that setting alone would spend it, and the colouring
+    // of its own mesh.
     encode.seconds = summary.load_seconds + summary.fuse_seconds + summary.decimate_seconds +
-                     summary.colour_seconds + s.encode_seconds;
+                     s.colour_seconds + s.encode_seconds;
     encode.encode_fps = encode.seconds > 0 ? frames / encode.seconds : 0;
     encode.decode_fps = s.decode_seconds > 0 ? frames / s.decode_seconds : 0;
     encode.peak_rss_mb = cost.peak_rss_mb;
@@ -605,6 +611,25 @@ Status Runner::Decimated(BenchRecord& record) {
   return DracoPoints(record, kMethodDecimated, codecs, *summary, out, command, cost);
 }
 
+void Runner::ReadFileInfo(const std::string& stem, BenchEncode* encode) {
+  // The file's own description: levels, frames and size on disk.
+  const StatusOr<ChildRun> info = Child({"info", encode->file, "--json", "-"}, stem + ".info");
+  StatusOr<json> j = info.ok() && info->ok() ? ReadJsonFile(info->log_path)
+                                             : StatusOr<json>(InternalError(ChildFailure(info)));
+  if (j.ok() && j->contains("levels") && j->contains("frames") && j->contains("bytes")) {
+    encode->levels = j->at("levels").get<int>();
+    encode->frames = j->at("frames").get<int>();
+    encode->bytes_total = ChildFigure(j->at("bytes"), "file");
+    // A file without colour has no "colour" count: none of its bytes are colour.
+    encode->colour_bytes_total =
+        j->at("bytes").contains("colour") ? ChildFigure(j->at("bytes"), "colour") : 0.0;
+    encode->encode_fps = encode->seconds > 0 ? encode->frames / encode->seconds : 0;
+  } else {
+    encode->ok = false;
+    encode->error = "info: " + (j.ok() ? std::string("unexpected JSON") : j.status().message());
+  }
+}
+
 Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int quality) {
   const std::string stem = codec + "-q" + std::to_string(quality);
   const std::string file = dir_ + "/" + stem + ".mvid";
@@ -612,6 +637,12 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
   BenchEncode encode;
   if (options_.resume && previous != nullptr && previous->ok && fs::exists(file)) {
     encode = *previous;
+    if (std::isnan(encode.colour_bytes_total)) {
+      // Recorded before colour was counted: the file's description again, not the encode.
+      ReadFileInfo(stem, &encode);
+      UpsertEncode(record, encode);
+      MESHVID_RETURN_IF_ERROR(Save(record));
+    }
   } else {
     encode.method = kMethodMeshvid;
     encode.codec = codec;
@@ -637,25 +668,7 @@ Status Runner::Meshvid(BenchRecord& record, const std::string& codec, int qualit
       encode.peak_rss_mb = run->peak_rss_mb;
     }
     if (!encode.ok) encode.error = "encode: " + ChildFailure(run);
-    if (encode.ok) {
-      // The file's own description: levels, frames and size on disk.
-      const StatusOr<ChildRun> info = Child({"info", file, "--json", "-"}, stem + ".info");
-      StatusOr<json> j = info.ok() && info->ok()
-                             ? ReadJsonFile(info->log_path)
-                             : StatusOr<json>(InternalError(ChildFailure(info)));
-      if (j.ok() && j->contains("levels") && j->contains("frames") && j->contains("bytes")) {
-        encode.levels = j->at("levels").get<int>();
-        encode.frames = j->at("frames").get<int>();
-        encode.bytes_total = ChildFigure(j->at("bytes"), "file");
-        // A file without colour has no "colour" count: none of its bytes are colour.
-        encode.colour_bytes_total =
-            j->at("bytes").contains("colour") ? ChildFigure(j->at("bytes"), "colour") : 0.0;
-        encode.encode_fps = encode.seconds > 0 ? encode.frames / encode.seconds : 0;
-      } else {
-        encode.ok = false;
-        encode.error = "info: " + (j.ok() ? std::string("unexpected JSON") : j.status().message());
-      }
-    }
+    if (encode.ok) ReadFileInfo(stem, &encode);
     UpsertEncode(record, encode);
     MESHVID_RETURN_IF_ERROR(Save(record));
   }

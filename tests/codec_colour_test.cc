@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "codec/common/colour_space.h"
 #include "codec/common/subdivision.h"
 #include "codec/enc/key_groups/colour.h"
 #include "codec/enc/key_groups/detail.h"
@@ -195,6 +197,55 @@ TEST(Colour, AnOutlierViewGivesNoColour) {
     ++outvoted;
   }
   EXPECT_GT(outvoted, 10u);
+}
+
+TEST(Colour, FilledColoursComeFromTheSeenSamplesAndGreyWhereNoneWasEverSeen) {
+  const Scene scene({1.0, 1.0, 1.0});
+  const SampleGraph graph = SampleGraph::Build(scene.lattice);
+  const std::size_t n = scene.lattice.samples().size();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::array<std::vector<float>, 3> last_seen;
+
+  // A run of one frame no view saw: neutral grey everywhere.
+  std::array<std::vector<std::vector<float>>, 3> unseen;
+  for (auto& channel : unseen) channel.assign(1, std::vector<float>(n, nan));
+  const auto grey = FillColours(graph, &unseen, &last_seen);
+  ASSERT_EQ(grey.size(), 1u);
+  ASSERT_EQ(grey[0].size(), n);
+  for (const Colour& c : grey[0]) EXPECT_EQ(c, Colour(128, 128, 128));
+
+  // The next run: frame 0 sees the left half in one colour, frame 1 sees all in another.
+  const Eigen::Vector3f left(200, 100, 50), all(10, 20, 30);
+  std::array<std::vector<std::vector<float>>, 3> run;
+  for (int c = 0; c < 3; ++c) {
+    run[c].assign(2, std::vector<float>(n, nan));
+    for (std::size_t s = 0; s < n; ++s) {
+      if (scene.sample_points[s].x() < 0) run[c][0][s] = left[c];
+      run[c][1][s] = all[c];
+    }
+  }
+  const auto colours = FillColours(graph, &run, &last_seen);
+  ASSERT_EQ(colours.size(), 2u);
+  int unseen_checked = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    EXPECT_EQ(colours[1][s], RoundTo8Bits(all)) << s;
+    if (scene.sample_points[s].x() < 0) {
+      EXPECT_EQ(colours[0][s], RoundTo8Bits(left)) << s;
+    } else {
+      // Unseen in frame 0: between what its neighbours saw then and what it saw next.
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_GE(colours[0][s][c], std::min(left[c], all[c])) << s;
+        EXPECT_LE(colours[0][s][c], std::max(left[c], all[c])) << s;
+      }
+      ++unseen_checked;
+    }
+  }
+  EXPECT_GT(unseen_checked, 10);
+  // The latest colours carry on to the next run.
+  for (int c = 0; c < 3; ++c) {
+    ASSERT_EQ(last_seen[c].size(), n);
+    EXPECT_FLOAT_EQ(last_seen[c][0], all[c]);
+  }
 }
 
 }  // namespace

@@ -53,6 +53,20 @@ TEST(MeshTest, AreaNormalsAndAppend) {
   EXPECT_NEAR(SurfaceArea(both), 8.0, 1e-6);
 }
 
+TEST(MeshTest, ViewsHaveColourOnlyWhenEveryViewWithASurfaceHasAColourPerVertex) {
+  TriangleMesh coloured = testing::MakeGridPlane(1.0f, 2);
+  coloured.colours.assign(coloured.vertex_count(), Colour(1, 2, 3));
+  const TriangleMesh plain = testing::MakeGridPlane(1.0f, 2);
+  TriangleMesh short_of_colours = coloured;
+  short_of_colours.colours.pop_back();
+  const TriangleMesh nothing_seen;  // a view that saw nothing has no colours and needs none
+  EXPECT_TRUE(ViewsHaveColour(std::vector<TriangleMesh>{coloured, nothing_seen}));
+  EXPECT_FALSE(ViewsHaveColour(std::vector<TriangleMesh>{coloured, plain}));
+  EXPECT_FALSE(ViewsHaveColour(std::vector<TriangleMesh>{coloured, short_of_colours}));
+  EXPECT_FALSE(ViewsHaveColour(std::vector<TriangleMesh>{plain, nothing_seen}));
+  EXPECT_FALSE(ViewsHaveColour(std::vector<TriangleMesh>{}));
+}
+
 TEST(MeshTest, RemoveUnreferencedVerticesRenumbers) {
   TriangleMesh mesh;
   mesh.positions = {{9, 9, 9}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

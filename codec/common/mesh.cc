@@ -51,6 +51,15 @@ Eigen::AlignedBox3f BoundingBox(const TriangleMesh& mesh) {
   return box;
 }
 
+bool ViewsHaveColour(std::span<const TriangleMesh> views) {
+  bool any = false;
+  for (const TriangleMesh& view : views) {
+    if (!view.empty() && view.colours.size() != view.vertex_count()) return false;
+    any = any || !view.colours.empty();
+  }
+  return any;
+}
+
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst) {
   const bool keep_normals = (dst->positions.empty() || !dst->normals.empty()) &&
                             !src.normals.empty();

@@ -52,6 +52,10 @@ inline Eigen::Vector3f BlendColours(std::span<const Colour> colours, const Trian
          v * colours[t[2]].cast<float>();
 }
 
+/// True if a frame's views carry colour: every view with vertices has a colour per vertex,
+/// and at least one view has colours.
+bool ViewsHaveColour(std::span<const TriangleMesh> views);
+
 /// Appends `src` to `dst`, offsetting its indices. Normals and colours are each kept only if
 /// both have them.
 void AppendMesh(const TriangleMesh& src, TriangleMesh* dst);

@@ -7,7 +7,6 @@
 #include <optional>
 #include <string>
 
-#include "codec/common/colour_space.h"
 #include "codec/enc/coding/mvid_writer.h"
 #include "codec/enc/key_groups/colour.h"
 #include "codec/enc/key_groups/detail.h"
@@ -137,21 +136,8 @@ Status EncodeKeyGroupDetail(const EncodeContext& ctx, const KeyGroupAnalysis& an
       }
     }
     *filled += FillDisplacementGroup(graph, &last_measured, &displacements);
-    std::vector<std::vector<Colour>> colours(colour ? chunk_end - chunk_first : 0);
-    if (colour) {
-      // A part no view saw in the group takes the average colour, not black.
-      const UnreachedFill average_colour{
-          .spread_everywhere = true, .frame_mean = true, .no_values = 128};
-      for (int c = 0; c < 3; ++c) {
-        FillDisplacementGroup(graph, &last_colour[c], &channels[c], average_colour);
-      }
-      for (std::size_t k = 0; k < colours.size(); ++k) {
-        colours[k].resize(channels[0][k].size());
-        for (std::size_t i = 0; i < colours[k].size(); ++i) {
-          colours[k][i] = RoundTo8Bits({channels[0][k][i], channels[1][k][i], channels[2][k][i]});
-        }
-      }
-    }
+    std::vector<std::vector<Colour>> colours;
+    if (colour) colours = FillColours(graph, &channels, &last_colour);
     summary->seconds_detail += SecondsSince(detail_start);
     auto coding_start = Clock::now();
     for (int g = 0; g < chunk_end - chunk_first; g += options.gof_size) {
@@ -293,11 +279,7 @@ StatusOr<EncodeSummary> EncodeCapture(const FrameSource& source, ByteSink sink,
   bool capture_has_colour = false;
   {
     MESHVID_ASSIGN_OR_RETURN(const std::vector<TriangleMesh> views, source.LoadFrame(first));
-    capture_has_colour = std::all_of(views.begin(), views.end(), [](const TriangleMesh& view) {
-      return view.empty() || view.colours.size() == view.vertex_count();
-    }) && std::any_of(views.begin(), views.end(), [](const TriangleMesh& view) {
-      return !view.colours.empty();
-    });
+    capture_has_colour = ViewsHaveColour(views);
     const Eigen::AlignedBox3f box = BoxOf(views);
     scale = box.isEmpty() ? 0.0f : box.diagonal().norm();
     if (!(scale > 0)) {

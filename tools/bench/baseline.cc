@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "codec/common/colour_space.h"
 #include "codec/common/progress.h"
 #include "codec/common/subdivision.h"
 #include "codec/dec/base_mesh_decoder.h"
@@ -36,15 +35,6 @@ std::string FramePath(const std::string& folder, int frame, const char* extensio
 /// fusion's vertices, within the sensors' noise of the data, are well inside.
 constexpr float kColourShotFraction = 0.005f;
 
-/// True if every view with vertices has a colour per vertex, and one view does.
-bool ViewsHaveColour(const std::vector<TriangleMesh>& views) {
-  const bool all = std::all_of(views.begin(), views.end(), [](const TriangleMesh& view) {
-    return view.empty() || view.colours.size() == view.vertex_count();
-  });
-  return all && std::any_of(views.begin(), views.end(),
-                            [](const TriangleMesh& view) { return !view.colours.empty(); });
-}
-
 }  // namespace
 
 Status ColourVerticesFromViews(std::span<const TriangleMesh> views,
@@ -61,20 +51,11 @@ Status ColourVerticesFromViews(std::span<const TriangleMesh> views,
                               .status());
   std::array<std::vector<float>, 3> fused;
   FuseColours(observations, EstimateExposureGains(observations), &fused);
-  // The encoder's fill for colour: spread from the seen vertices, the mean where none reaches.
-  const SampleGraph graph = SampleGraph::Build(lattice);
-  const UnreachedFill average_colour{
-      .spread_everywhere = true, .frame_mean = true, .no_values = 128};
+  // The encoder's fill for colour, over a run of one frame.
   std::array<std::vector<std::vector<float>>, 3> channels;
-  for (int c = 0; c < 3; ++c) {
-    channels[c].push_back(std::move(fused[c]));
-    std::vector<float> last_measured;
-    FillDisplacementGroup(graph, &last_measured, &channels[c], average_colour);
-  }
-  mesh->colours.resize(mesh->vertex_count());
-  for (std::size_t i = 0; i < mesh->vertex_count(); ++i) {
-    mesh->colours[i] = RoundTo8Bits({channels[0][0][i], channels[1][0][i], channels[2][0][i]});
-  }
+  for (int c = 0; c < 3; ++c) channels[c].push_back(std::move(fused[c]));
+  std::array<std::vector<float>, 3> last_seen;
+  mesh->colours = std::move(FillColours(SampleGraph::Build(lattice), &channels, &last_seen)[0]);
   return Status::Ok();
 }
 

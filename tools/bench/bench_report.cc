@@ -103,11 +103,19 @@ std::string GoalRow(const BenchRecord& record) {
 
 std::string MetMark(bool met) { return met ? " met" : " missed"; }
 
+/// The row of a table about `record` when its simulation failed: sequence, rig, the failure,
+/// and `empty_cells` empty cells after it.
+std::string SimulationFailedRow(const BenchRecord& record, int empty_cells) {
+  std::string row = "| " + record.sequence + " | " + record.rig + " | simulation failed";
+  for (int i = 0; i <= empty_cells; ++i) row += " |";
+  return row + "\n";
+}
+
 /// The divergence row of one record (its check computed from its points, so a record written
 /// before the check was recorded has one too); its note, if any, goes to `notes`.
 std::string DivergenceRow(const BenchRecord& record, std::string* notes) {
+  if (!record.simulate_ok) return SimulationFailedRow(record, 4);
   std::string row = "| " + record.sequence + " | " + record.rig + " | ";
-  if (!record.simulate_ok) return row + "simulation failed | | | | |\n";
   BenchRecord copy = record;
   ComputeDivergence(copy);
   const DivergenceCheck& d = copy.divergence;
@@ -207,8 +215,7 @@ std::string ColourSection(const std::vector<BenchRecord>& records) {
       "vs baseline best |\n";
   md += "|---|---|---|---|---|---|---|\n";
   for (const BenchRecord& r : records) {
-    md += r.simulate_ok ? ColourRow(r)
-                        : "| " + r.sequence + " | " + r.rig + " | simulation failed | | | | |\n";
+    md += r.simulate_ok ? ColourRow(r) : SimulationFailedRow(r, 4);
   }
   return md + "\n";
 }
@@ -468,8 +475,7 @@ std::string GenerateResultsMarkdown(const std::vector<BenchRecord>& records,
       "| coverage: meshvid vs baseline |\n";
   md += "|---|---|---|---|---|---|\n";
   for (const BenchRecord& r : records) {
-    md += r.simulate_ok ? GoalRow(r)
-                        : "| " + r.sequence + " | " + r.rig + " | simulation failed | | | |\n";
+    md += r.simulate_ok ? GoalRow(r) : SimulationFailedRow(r, 3);
   }
   md += "\n";
   md += DivergenceSection(records);

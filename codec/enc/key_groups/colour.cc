@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "codec/common/colour_space.h"
+#include "codec/enc/key_groups/detail.h"
+
 namespace meshvid {
 namespace {
 
@@ -99,6 +102,25 @@ void FuseColours(const ColourObservations& observations, std::span<const double>
       (*channels)[c][s] = static_cast<float>(std::clamp(sum[c] / weights, 0.0, 255.0));
     }
   }
+}
+
+std::vector<std::vector<Colour>> FillColours(
+    const SampleGraph& graph, std::array<std::vector<std::vector<float>>, 3>* channels,
+    std::array<std::vector<float>, 3>* last_seen) {
+  const UnreachedFill average_colour{
+      .spread_everywhere = true, .frame_mean = true, .no_values = 128};
+  for (int c = 0; c < 3; ++c) {
+    FillDisplacementGroup(graph, &(*last_seen)[c], &(*channels)[c], average_colour);
+  }
+  const auto& [red, green, blue] = *channels;
+  std::vector<std::vector<Colour>> colours(red.size());
+  for (std::size_t k = 0; k < colours.size(); ++k) {
+    colours[k].resize(red[k].size());
+    for (std::size_t i = 0; i < colours[k].size(); ++i) {
+      colours[k][i] = RoundTo8Bits({red[k][i], green[k][i], blue[k][i]});
+    }
+  }
+  return colours;
 }
 
 }  // namespace meshvid

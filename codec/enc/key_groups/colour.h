@@ -11,7 +11,11 @@
 
 #include <Eigen/Core>
 
+#include "codec/common/mesh.h"
+
 namespace meshvid {
+
+struct SampleGraph;
 
 /// What the views saw of one frame's colour, sample by sample: per view, a colour (0..255 per
 /// channel) and a weight (0 where the view did not see the sample or its hit was an outlier).
@@ -42,6 +46,17 @@ std::vector<double> EstimateExposureGains(const ColourObservations& observations
 /// saw the sample.
 void FuseColours(const ColourObservations& observations, std::span<const double> gains,
                  std::array<std::vector<float>, 3>* channels);
+
+/// The colours of a run of frames from their fused channels (`channels`: [channel][frame]
+/// [sample], NaN where no view saw the sample, as FuseColours gives them; filled in place). A
+/// sample no view saw takes its nearest colours in time and space, as a displacement does
+/// (FillDisplacementGroup), spread from the seen samples to every other one: the frame's mean
+/// where none reaches, not black, and neutral grey in a frame no view saw. `last_seen`
+/// carries each channel's latest colours from one run to the next. Returns [frame][sample],
+/// rounded to 8 bits.
+std::vector<std::vector<Colour>> FillColours(
+    const SampleGraph& graph, std::array<std::vector<std::vector<float>>, 3>* channels,
+    std::array<std::vector<float>, 3>* last_seen);
 
 }  // namespace meshvid
 

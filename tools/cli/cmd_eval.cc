@@ -85,7 +85,11 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
       "An exact frame has PSNR inf. A sequence's PSNR is given twice: of the mean MSE\n"
       "(\"mean MSE\"; JSON mean.d1_psnr) and as the mean of per-frame PSNRs, MPEG CTC's\n"
       "average, each frame counted as at most 100 dB (\"mean of frames\"; JSON\n"
-      "mean.d1_psnr_mean_of_frames).");
+      "mean.d1_psnr_mean_of_frames).\n"
+      "Colour, where both sides have it: PSNR of 8-bit BT.709 Y and of Y Cb Cr weighted\n"
+      "6:1:1 (MPEG), against the reference's colour at the nearest surface point. A\n"
+      "sequence's colour PSNRs are only ever the mean of per-frame PSNRs (each at most\n"
+      "100 dB): JSON mean.y_psnr, mean.yuv_psnr, beside D1's mean MSE figures.");
   cmd->add_option("--ref", args->ref,
                   "Ground truth: scene:NAME, NAME.obj (+NAME.pc2), a folder or a {frame} pattern")
       ->required();

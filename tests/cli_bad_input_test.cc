@@ -183,9 +183,10 @@ TEST(BadInputCliTest, AnUnknownCommandIsNamed) {
   const testing::CliRun run = testing::RunMeshvid("frobnicate --fast", dir);
   EXPECT_EQ(run.exit_code, 2);
   // The list names the commands (new ones join it; the hidden ones meshvid bench runs don't).
-  EXPECT_NE(run.err.find("meshvid: unknown command 'frobnicate' (commands: simulate, encode, "
-                         "info, decode, export, render, eval, fuse, concat, cut, transcode, bench"),
-            std::string::npos)
+  EXPECT_NE(
+      run.err.find("meshvid: unknown command 'frobnicate' (commands: simulate, encode, "
+                   "info, decode, export, render, eval, fuse, concat, cut, transcode, edit, bench"),
+      std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("see meshvid --help"), std::string::npos) << run.err;
   // No command at all still says one is required.

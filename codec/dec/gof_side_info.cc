@@ -49,6 +49,17 @@ StatusOr<DisplacementPacking> PackingOf(const SideInfoHead& head, const ByteRead
   return static_cast<DisplacementPacking>(head.packing);
 }
 
+/// `head`'s displacement range, kCorrupt (through `reader`) unless it is finite and increasing.
+StatusOr<DisplacementRange> RangeOf(const SideInfoHead& head, const ByteReader& reader) {
+  DisplacementRange range;
+  range.minimum = std::bit_cast<float>(head.minimum);
+  range.step = std::bit_cast<float>(head.step);
+  if (!std::isfinite(range.minimum) || !(range.step > 0 && std::isfinite(range.step))) {
+    return reader.Error("displacement range is not finite and increasing");
+  }
+  return range;
+}
+
 }  // namespace
 
 StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
@@ -58,12 +69,7 @@ StatusOr<GofSideInfo> DecodeGofSideInfo(std::span<const std::uint8_t> bytes,
   MESHVID_ASSIGN_OR_RETURN(const SideInfoHead head, ReadHead(reader));
   GofSideInfo info;
   MESHVID_ASSIGN_OR_RETURN(info.packing, PackingOf(head, reader));
-  info.displacement_range.minimum = std::bit_cast<float>(head.minimum);
-  info.displacement_range.step = std::bit_cast<float>(head.step);
-  if (!std::isfinite(info.displacement_range.minimum) ||
-      !(info.displacement_range.step > 0 && std::isfinite(info.displacement_range.step))) {
-    return reader.Error("displacement range is not finite and increasing");
-  }
+  MESHVID_ASSIGN_OR_RETURN(info.displacement_range, RangeOf(head, reader));
   info.video_config.assign(head.config.begin(), head.config.end());
   MESHVID_ASSIGN_OR_RETURN(
       info.transforms,
@@ -101,11 +107,28 @@ StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint
   return writer.Release();
 }
 
+StatusOr<std::vector<std::uint8_t>> ReplaceRangeAndVideoConfig(
+    std::span<const std::uint8_t> side_info, const DisplacementRange& range,
+    std::span<const std::uint8_t> video_config) {
+  ByteReader reader(side_info, "group side information");
+  MESHVID_ASSIGN_OR_RETURN(const SideInfoHead head, ReadHead(reader));
+  ByteWriter writer;
+  writer.PutU8(head.version);
+  writer.PutU8(head.packing);
+  writer.PutU32(std::bit_cast<std::uint32_t>(range.minimum));
+  writer.PutU32(std::bit_cast<std::uint32_t>(range.step));
+  writer.PutU32(static_cast<std::uint32_t>(video_config.size()));
+  writer.PutBytes(video_config);
+  writer.PutBytes(side_info.subspan(head.transforms_at));
+  return writer.Release();
+}
+
 StatusOr<GofVideoHead> ReadGofVideoHead(std::span<const std::uint8_t> side_info) {
   ByteReader reader(side_info, "group side information");
   MESHVID_ASSIGN_OR_RETURN(const SideInfoHead head, ReadHead(reader));
   GofVideoHead video;
   MESHVID_ASSIGN_OR_RETURN(video.packing, PackingOf(head, reader));
+  MESHVID_ASSIGN_OR_RETURN(video.displacement_range, RangeOf(head, reader));
   video.video_config.assign(head.config.begin(), head.config.end());
   return video;
 }

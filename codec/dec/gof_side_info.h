@@ -45,10 +45,19 @@ std::vector<std::uint8_t> EncodeGofSideInfo(DisplacementPacking packing,
 StatusOr<std::vector<std::uint8_t>> ReplaceVideoConfig(std::span<const std::uint8_t> side_info,
                                                        std::span<const std::uint8_t> video_config);
 
+/// The side information `side_info` with its displacement range replaced by `range` and its
+/// video configuration record by `video_config`, everything else (version, packing,
+/// transforms) byte for byte: a group whose displacements are changed and coded again
+/// (`meshvid edit`). kCorrupt if `side_info` does not parse.
+StatusOr<std::vector<std::uint8_t>> ReplaceRangeAndVideoConfig(
+    std::span<const std::uint8_t> side_info, const DisplacementRange& range,
+    std::span<const std::uint8_t> video_config);
+
 /// What a group's video decoder needs of its side information: the displacement packing (which
 /// with the key group gives the picture size) and the configuration record.
 struct GofVideoHead {
   DisplacementPacking packing = DisplacementPacking::kTriangleBlocks;
+  DisplacementRange displacement_range;  ///< finite, with a positive step
   std::vector<std::uint8_t> video_config;
 };
 

@@ -25,6 +25,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddConcatCommand(CLI::App& app, int* exit_code);
 void AddCutCommand(CLI::App& app, int* exit_code);
 void AddTranscodeCommand(CLI::App& app, int* exit_code);
+void AddEditCommand(CLI::App& app, int* exit_code);
 
 }  // namespace meshvid::cli
 

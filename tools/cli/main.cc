@@ -37,6 +37,7 @@ int Run(int argc, char** argv) {
   meshvid::cli::AddConcatCommand(app, &exit_code);
   meshvid::cli::AddCutCommand(app, &exit_code);
   meshvid::cli::AddTranscodeCommand(app, &exit_code);
+  meshvid::cli::AddEditCommand(app, &exit_code);
   meshvid::cli::AddBenchCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
